@@ -1,0 +1,1 @@
+"""Evidence files for failing items, written atomically below `--laser-artifacts`."""

@@ -1,0 +1,180 @@
+"""The `lasertest` command: `catalogue` lists scanner models, `doctor` checks the installation."""
+
+from __future__ import annotations
+
+import argparse
+import importlib.metadata
+import importlib.util
+import json
+import math
+import sys
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from pytest_lasertest.geometry import Pose3D
+from pytest_lasertest.spec import SpecError
+from pytest_lasertest.spec.bundled import bundled_robots
+from pytest_lasertest.spec.catalogue import load_catalogue
+from pytest_lasertest.spec.robot import load_robot_file
+
+# Distribution name -> module name, for the packages the plugin runs on.
+DEPENDENCIES = {
+    "pytest": "pytest",
+    "numpy": "numpy",
+    "pyyaml": "yaml",
+    "hypothesis": "hypothesis",
+    "z3-solver": "z3",
+    "pybullet": "pybullet",
+}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run one subcommand; the exit status is 0 on success."""
+    parser = argparse.ArgumentParser(prog="lasertest", description=__doc__)
+    commands = parser.add_subparsers(dest="command", required=True)
+    catalogue = commands.add_parser("catalogue", help="list the scanner models `model:` can name")
+    catalogue.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    commands.add_parser("doctor", help="check the installation and say what to fix")
+    args = parser.parse_args(argv)
+    try:
+        if args.command == "catalogue":
+            return print_catalogue(as_json=args.json)
+        return run_doctor()
+    except SpecError as error:
+        print(f"lasertest: {error}", file=sys.stderr)
+        return 2
+
+
+def print_catalogue(*, as_json: bool) -> int:
+    """Print every catalogue model with the figures that matter for a 2D scan."""
+    rows = []
+    for key, entry in load_catalogue().entries.items():
+        profile = entry.profile(Pose3D())
+        rows.append(
+            {
+                "model": key,
+                "name": entry.name,
+                "fov_deg": round(math.degrees(profile.max_angle - profile.min_angle), 2),
+                "beams": profile.beam_count,
+                "step_deg": round(math.degrees(profile.angle_increment), 4),
+                "range_min_m": profile.range_min,
+                "range_max_m": profile.range_max,
+                "update_rate_hz": profile.update_rate,
+                "noise_stddev_m": profile.noise.stddev if profile.noise else None,
+            }
+        )
+    if as_json:
+        print(json.dumps(rows, indent=2))
+    else:
+        print(_table(rows))
+    return 0
+
+
+def _table(rows: list[dict[str, object]]) -> str:
+    header = ("model", "FOV deg", "beams", "step deg", "range m", "rate Hz", "noise mm", "name")
+    lines = [header] + [
+        (
+            str(row["model"]),
+            f"{row['fov_deg']:g}",
+            str(row["beams"]),
+            f"{row['step_deg']:.3f}",
+            f"{row['range_min_m']:g}-{row['range_max_m']:g}",
+            f"{row['update_rate_hz']:g}",
+            "-" if row["noise_stddev_m"] is None else f"{float(row['noise_stddev_m']) * 1e3:g}",  # type: ignore[arg-type]
+            str(row["name"]),
+        )
+        for row in rows
+    ]
+    widths = [max(len(line[column]) for line in lines) for column in range(len(header))]
+    return "\n".join(
+        "  ".join(cell.ljust(width) for cell, width in zip(line, widths, strict=True)).rstrip()
+        for line in lines
+    )
+
+
+@dataclass(frozen=True)
+class Check:
+    """One thing the plugin needs, how to test it, and what to do when it is broken."""
+
+    name: str
+    run: Callable[[], str]
+    fix: str
+
+
+def run_doctor() -> int:
+    """Run every check, print one line each, and return 1 if any failed."""
+    failures = 0
+    for check in CHECKS:
+        try:
+            print(f"ok    {check.name}: {check.run()}")
+        except Exception as error:  # noqa: BLE001  (the doctor reports every failure as text)
+            failures += 1
+            print(f"FAIL  {check.name}: {type(error).__name__}: {error}\n      fix: {check.fix}")
+    print("all checks passed" if not failures else f"{failures} check(s) failed")
+    return 1 if failures else 0
+
+
+def _python() -> str:
+    return f"{sys.implementation.name} {sys.version.split()[0]} at {sys.executable}"
+
+
+def _packages() -> str:
+    found, missing = [], []
+    for distribution, module in DEPENDENCIES.items():
+        try:
+            version = importlib.metadata.version(distribution)
+        except importlib.metadata.PackageNotFoundError:
+            version = None
+        if version is None or importlib.util.find_spec(module) is None:
+            missing.append(distribution)
+        else:
+            found.append(f"{distribution} {version}")
+    if missing:
+        raise RuntimeError(f"not installed: {', '.join(missing)}")
+    return ", ".join(found)
+
+
+def _z3() -> str:
+    from pytest_lasertest.solver import self_test
+
+    return self_test()
+
+
+def _pybullet() -> str:
+    from pytest_lasertest.sim import self_test
+
+    return self_test()
+
+
+def _robots() -> str:
+    robots = bundled_robots()
+    if not robots:
+        raise RuntimeError("no bundled robot found")
+    return ", ".join(f"{name} ({load_robot_file(path).name})" for name, path in robots.items())
+
+
+def _catalogue() -> str:
+    entries = load_catalogue().entries
+    if not entries:
+        raise RuntimeError("the scanner catalogue is empty")
+    return f"{len(entries)} models load and validate"
+
+
+def _entry_point() -> str:
+    for entry_point in importlib.metadata.entry_points(group="pytest11"):
+        if entry_point.value == "pytest_lasertest.plugin":
+            return f"pytest loads it as {entry_point.name!r}"
+    raise RuntimeError("no pytest11 entry point names pytest_lasertest.plugin")
+
+
+CHECKS = (
+    Check("python", _python, "install Python 3.11 or newer"),
+    Check("packages", _packages, "pip install pytest-lasertest, which brings its dependencies"),
+    Check("z3", _z3, "pip install --force-reinstall z3-solver"),
+    Check("pybullet", _pybullet, "pip install --force-reinstall pybullet"),
+    Check("bundled robots", _robots, "reinstall pytest-lasertest: its package data is incomplete"),
+    Check("scanner catalogue", _catalogue, "reinstall pytest-lasertest: its catalogue is damaged"),
+    Check(
+        "pytest plugin", _entry_point, "reinstall pytest-lasertest so pytest finds its entry point"
+    ),
+)

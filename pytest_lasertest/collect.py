@@ -1,0 +1,142 @@
+"""Collection nodes: a pairs file, and the items it yields for each pair."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+from typing import Any
+
+import pytest
+from _pytest._code.code import TerminalRepr, TracebackStyle
+
+from pytest_lasertest.artifacts.files import artifact_path, write_json
+from pytest_lasertest.coverage import CoverageChange, CoverageComparison, compare_coverage
+from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
+from pytest_lasertest.sensor import LaserProfile
+from pytest_lasertest.spec import Pair, PairsFile, SpecError, load_pairs_file
+from pytest_lasertest.spec.errors import display_path
+
+
+class PairFile(pytest.File):
+    """A pairs file; a file that cannot be used is one collection error naming file and line."""
+
+    is_pairs_file = True
+
+    def collect(self) -> list[pytest.Item]:
+        try:
+            spec = load_pairs_file(self.path)
+        except SpecError as error:
+            raise self.CollectError(str(error)) from None
+        return [
+            CoverageItem.from_parent(self, name=f"{pair.name}[coverage]", spec=spec, pair=pair)
+            for pair in spec.pairs
+        ]
+
+
+class CoverageLost(Exception):
+    """The candidate scanner is blind somewhere the baseline scanner saw."""
+
+    def __init__(self, comparison: CoverageComparison, artifact: Path | None) -> None:
+        super().__init__(comparison)
+        self.comparison = comparison
+        self.artifact = artifact
+
+
+class CoverageItem(pytest.Item):
+    """Checks that the candidate scans everything its baseline scanned, on the same robot."""
+
+    def __init__(self, *, spec: PairsFile, pair: Pair, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.spec = spec
+        self.pair = pair
+        self.add_marker("lasertest")
+
+    @property
+    def options(self) -> LaserOptions:
+        return self.config.stash[OPTIONS_KEY]
+
+    def runtest(self) -> None:
+        comparison = compare_coverage(
+            self.pair.baseline.profile,
+            self.pair.candidate.profile,
+            min_obstacle_size=self.spec.settings.min_obstacle_size,
+            max_speed=self.spec.robot.max_linear_velocity,
+        )
+        self.user_properties.append(("lasertest.seed", self.options.seed))
+        self.user_properties.append(("lasertest.coverage_losses", len(comparison.losses)))
+        for change in comparison.changes:
+            self.user_properties.append(
+                (
+                    f"lasertest.{change.attribute}",
+                    f"{change.baseline:g} -> {change.candidate:g} {change.unit}",
+                )
+            )
+        if comparison.losses:
+            raise CoverageLost(comparison, self._write_artifact(comparison))
+
+    def _write_artifact(self, comparison: CoverageComparison) -> Path | None:
+        if self.options.artifacts is None:
+            return None
+        path = artifact_path(self.options.artifacts, self.nodeid, ".json")
+        return write_json(path, self._evidence(comparison))
+
+    def _evidence(self, comparison: CoverageComparison) -> dict[str, object]:
+        return {
+            "item": self.nodeid,
+            "pairs_file": str(self.spec.path),
+            "pair": self.pair.name,
+            "seed": self.options.seed,
+            "policy": self.options.policy,
+            "baseline": {
+                "model": self.pair.baseline.model,
+                **_profile_dict(self.pair.baseline.profile),
+            },
+            "candidate": {
+                "model": self.pair.candidate.model,
+                **_profile_dict(self.pair.candidate.profile),
+            },
+            "coverage": dataclasses.asdict(comparison),
+        }
+
+    def repr_failure(
+        self, excinfo: pytest.ExceptionInfo[BaseException], style: TracebackStyle | None = None
+    ) -> str | TerminalRepr:
+        if isinstance(excinfo.value, CoverageLost):
+            return self._coverage_report(excinfo.value)
+        return super().repr_failure(excinfo, style)
+
+    def _coverage_report(self, lost: CoverageLost) -> str:
+        pair, losses = self.pair, lost.comparison.losses
+        lines = [
+            f"the candidate scans less than the baseline: {len(losses)} "
+            f"loss{'es' if len(losses) > 1 else ''} of coverage",
+            f"  pair       {pair.name} ({pair.location})",
+            f"  baseline   {pair.baseline.label}: {pair.baseline.profile.describe()}",
+            f"  candidate  {pair.candidate.label}: {pair.candidate.profile.describe()}",
+            "  lost:",
+            *(_change_line(change) for change in losses),
+        ]
+        others = [change for change in lost.comparison.changes if not change.worse]
+        if others:
+            lines += ["  other changes:", *(_change_line(change) for change in others)]
+        lines.append(f"  replay     pytest '{self.nodeid}' {self.options.replay_options()}")
+        if lost.artifact is not None:
+            lines.append(f"  evidence   {display_path(lost.artifact)}")
+        return "\n".join(lines)
+
+    def reportinfo(self) -> tuple[Path, int, str]:
+        return self.path, self.pair.location.line - 1, f"{self.pair.name}[coverage]"
+
+
+def _change_line(change: CoverageChange) -> str:
+    return (
+        f"    {change.attribute}: {change.baseline:g} -> {change.candidate:g} {change.unit}; "
+        f"{change.detail}"
+    )
+
+
+def _profile_dict(profile: LaserProfile) -> dict[str, object]:
+    return {
+        **dataclasses.asdict(profile),
+        "laserscan": dataclasses.asdict(profile.to_laserscan_meta()),
+    }

@@ -1,0 +1,115 @@
+"""Command-line options, each parsed by a pure function that names the bad value and the choices."""
+
+from __future__ import annotations
+
+import secrets
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Literal, get_args
+
+import pytest
+
+Profile = Literal["dev", "ci", "nightly", "triage"]
+Policy = Literal["candidate", "regression"]
+PROFILES: tuple[Profile, ...] = get_args(Profile)
+POLICIES: tuple[Policy, ...] = get_args(Policy)
+MAX_SEED = 2**32 - 1
+PAIRS_SUFFIXES = (".lasertest.yaml", ".lasertest.yml")
+
+
+@dataclass(frozen=True)
+class LaserOptions:
+    """The run's settings: everything needed to replay it."""
+
+    seed: int
+    profile: Profile
+    policy: Policy
+    artifacts: Path | None
+    pairs: tuple[Path, ...]  # pairs files named on the command line, absolute
+
+    def replay_options(self) -> str:
+        """The options that reproduce this run."""
+        return (
+            f"--laser-seed={self.seed} --laser-profile={self.profile} --laser-policy={self.policy}"
+        )
+
+
+OPTIONS_KEY = pytest.StashKey[LaserOptions]()
+
+
+def parse_seed(text: str) -> int | None:
+    """An explicit seed, or None for 'random' (a fresh seed per run)."""
+    if text == "random":
+        return None
+    try:
+        seed = int(text, 10)
+    except ValueError:
+        seed = -1
+    if not 0 <= seed <= MAX_SEED:
+        raise pytest.UsageError(
+            f"--laser-seed={text!r} is not a seed: give a whole number from 0 to {MAX_SEED}, "
+            "or 'random' for a fresh one (the report header prints it for replay)"
+        )
+    return seed
+
+
+def fresh_seed() -> int:
+    """A seed drawn from the operating system, not from any global random state."""
+    return secrets.randbelow(MAX_SEED + 1)
+
+
+def parse_profile(text: str) -> Profile:
+    """A budget profile name."""
+    if text not in PROFILES:
+        raise pytest.UsageError(
+            f"--laser-profile={text!r} is not a budget profile: choose one of {', '.join(PROFILES)}"
+        )
+    return text
+
+
+def default_profile(environ: Mapping[str, str]) -> Profile:
+    """`ci` on a CI service (which sets CI), else `dev`."""
+    return "ci" if environ.get("CI", "").lower() not in ("", "0", "false", "no") else "dev"
+
+
+def parse_policy(text: str) -> Policy:
+    """What fails an item: any failure of the candidate, or only one the baseline does not share."""
+    if text not in POLICIES:
+        raise pytest.UsageError(
+            f"--laser-policy={text!r} is not a policy: choose 'candidate' (fail whenever the "
+            "candidate fails) or 'regression' (fail only where the baseline did not)"
+        )
+    return text
+
+
+def parse_artifacts(text: str, base: Path) -> Path:
+    """The directory that receives failure artifacts; created when the first one is written."""
+    path = base / text
+    if not text or (path.exists() and not path.is_dir()):
+        raise pytest.UsageError(
+            f"--laser-artifacts={text!r} is not a directory: give a directory path "
+            "(it is created if missing)"
+        )
+    return path
+
+
+def parse_pairs(texts: Iterable[str], base: Path, source: str) -> tuple[Path, ...]:
+    """Pairs files from `source` (an option or ini name), each an existing file."""
+    paths = []
+    for text in texts:
+        path = (base / text).resolve()
+        if not path.is_file():
+            what = "a directory" if path.is_dir() else "missing"
+            raise pytest.UsageError(
+                f"{source}: {text!r} is {what}; it takes the path of a pairs file "
+                f"(relative to {base}); to collect every *{PAIRS_SUFFIXES[0]} in a directory, "
+                "pass the directory to pytest as an argument"
+            )
+        paths.append(path)
+    return tuple(paths)
+
+
+def is_pairs_file(path: Path, named: Iterable[Path]) -> bool:
+    """Whether pytest should collect `path` as a pairs file."""
+    return path.name.endswith(PAIRS_SUFFIXES) or path.resolve() in set(named)

@@ -1,0 +1,61 @@
+"""The plugin object of one run: the report header, pairs-file collection, and xdist seeding."""
+
+from __future__ import annotations
+
+from collections.abc import Generator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from pytest_lasertest.options import OPTIONS_KEY, LaserOptions, is_pairs_file
+
+
+class LaserSession:
+    """Collects pairs files and keeps a broken one from stopping the rest of the run."""
+
+    def __init__(self, options: LaserOptions) -> None:
+        self.options = options
+        self.broken_files = 0
+
+    def pytest_report_header(self, config: pytest.Config) -> str:
+        artifacts = f", artifacts in {self.options.artifacts}" if self.options.artifacts else ""
+        return f"lasertest: {self.options.replay_options()}{artifacts}"
+
+    def pytest_collect_file(self, file_path: Path, parent: pytest.Collector) -> pytest.File | None:
+        if not is_pairs_file(file_path, self.options.pairs):
+            return None
+        from pytest_lasertest.collect import PairFile
+
+        pair_file: PairFile = PairFile.from_parent(parent, path=file_path)
+        return pair_file
+
+    @pytest.hookimpl(wrapper=True)
+    def pytest_make_collect_report(
+        self, collector: pytest.Collector
+    ) -> Generator[None, pytest.CollectReport, pytest.CollectReport]:
+        report = yield
+        if report.failed and getattr(collector, "is_pairs_file", False):
+            self.broken_files += 1
+        return report
+
+    @pytest.hookimpl(wrapper=True)
+    def pytest_runtestloop(self, session: pytest.Session) -> Generator[None, object, object]:
+        # pytest stops the run at any collection error; a broken pairs file must not stop the
+        # other files, but it still fails the run.
+        session.testsfailed -= self.broken_files
+        try:
+            return (yield)
+        finally:
+            session.testsfailed += self.broken_files
+
+
+class XdistHooks:
+    """Hooks registered only when pytest-xdist is active."""
+
+    def __init__(self, seed_key: str) -> None:
+        self.seed_key = seed_key
+
+    def pytest_configure_node(self, node: Any) -> None:
+        """Hand the controller's seed to each worker."""
+        node.workerinput[self.seed_key] = node.config.stash[OPTIONS_KEY].seed

@@ -1,0 +1,129 @@
+"""Pairs files: a robot, a world, settings, constraints, and named baseline/candidate pairs."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from pytest_lasertest.geometry import Pose3D
+from pytest_lasertest.robot import Robot
+from pytest_lasertest.spec.catalogue import Catalogue, load_catalogue
+from pytest_lasertest.spec.constraints import Constraint, read_constraints
+from pytest_lasertest.spec.errors import Location, SpecError
+from pytest_lasertest.spec.node import SpecNode, read_root
+from pytest_lasertest.spec.profile import PROFILE_KEYS, Scanner, build_profile, read_fields
+from pytest_lasertest.spec.robot import read_robot
+from pytest_lasertest.spec.world import World, read_world
+
+SECTIONS = ("robot", "world", "settings", "constraints", "pairs")
+REQUIRED_SECTIONS = ("robot", "world", "pairs")
+SETTINGS_KEYS = ("min_obstacle_size",)
+# Pair names become part of test ids (`file::NAME[...]`), which `::`, `[` and spaces would break.
+PAIR_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*\Z")
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How a pairs file tunes the gate."""
+
+    min_obstacle_size: float = 0.05  # m, the thinnest obstacle the robot must see
+
+
+@dataclass(frozen=True)
+class Pair:
+    """A named hardware change: the baseline scanner and the candidate that replaces it."""
+
+    name: str
+    location: Location
+    baseline: Scanner
+    candidate: Scanner
+
+
+@dataclass(frozen=True)
+class PairsFile:
+    """Everything one pairs file asks the gate to check."""
+
+    path: Path
+    robot: Robot
+    world: World
+    pairs: tuple[Pair, ...]
+    settings: Settings = field(default_factory=Settings)
+    constraints: tuple[Constraint, ...] = ()
+
+
+def load_pairs_file(path: Path) -> PairsFile:
+    """Read and validate a pairs file; any problem is a SpecError naming file, line and field."""
+    root = read_root(path, what="pairs file", needs="robot, world and pairs")
+    sections = root.mapping(SECTIONS, what="pairs-file sections")
+    for key in REQUIRED_SECTIONS:
+        if key not in sections:
+            raise root.missing(
+                key, "a pairs file needs robot, world and pairs; see the example in the README"
+            )
+    robot = read_robot(sections["robot"])
+    return PairsFile(
+        path=path,
+        robot=robot,
+        world=read_world(sections["world"]),
+        pairs=_read_pairs(sections["pairs"], load_catalogue(), robot.laser_mount),
+        settings=_read_settings(sections.get("settings")),
+        constraints=read_constraints(sections["constraints"]) if "constraints" in sections else (),
+    )
+
+
+def _read_settings(node: SpecNode | None) -> Settings:
+    if node is None:
+        return Settings()
+    fields = node.mapping(SETTINGS_KEYS, what="settings")
+    size = fields.get("min_obstacle_size")
+    if size is None:
+        return Settings()
+    if size.number("m") <= 0:
+        raise size.error(f"{size.value} m is no obstacle", "write a positive width in m, e.g. 0.05")
+    return Settings(min_obstacle_size=size.number("m"))
+
+
+def _read_pairs(node: SpecNode, catalogue: Catalogue, mount: Pose3D) -> tuple[Pair, ...]:
+    entries = node.entries(what="pairs, each `NAME: {baseline: ..., candidate: ...}`")
+    if not entries:
+        raise node.error("there are no pairs", "add one: `NAME: {baseline: ..., candidate: ...}`")
+    return tuple(_read_pair(name, entry, catalogue, mount) for name, entry in entries.items())
+
+
+def _read_pair(name: str, node: SpecNode, catalogue: Catalogue, mount: Pose3D) -> Pair:
+    if not PAIR_NAME.match(name):
+        raise node.error(
+            f"the pair name {name!r} cannot be part of a test id",
+            "use letters, digits, '_', '-' and '.' only, e.g. `blind_spot`",
+        )
+    sides = node.mapping(("baseline", "candidate"), what="the two scanners of the pair")
+    for side in ("baseline", "candidate"):
+        if side not in sides:
+            raise node.missing(side, f"give the {side} scanner: a profile, or `model: NAME`")
+    return Pair(
+        name,
+        node.location,
+        _read_scanner(sides["baseline"], catalogue, mount),
+        _read_scanner(sides["candidate"], catalogue, mount),
+    )
+
+
+def _read_scanner(node: SpecNode, catalogue: Catalogue, mount: Pose3D) -> Scanner:
+    fields = read_fields(node, ("model", *PROFILE_KEYS, "pose"))
+    model = fields.pop("model", None)
+    if model is None:
+        return Scanner(build_profile(fields, node, mount), None)
+    entry = catalogue.find(model)
+    try:
+        return Scanner(build_profile({**entry.fields, **fields}, node, mount), entry.key)
+    except SpecError as error:
+        if error.location.path == node.location.path:
+            raise
+        # The overrides clash with a catalogue value: the fix belongs in the pairs file.
+        raise SpecError(
+            node.location,
+            f"{node.field}.{error.field}",
+            f"{error.problem} (model {entry.key!r} sets {error.field} at {error.location})",
+            error.fix,
+        ) from None
