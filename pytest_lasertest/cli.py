@@ -178,3 +178,7 @@ CHECKS = (
         "pytest plugin", _entry_point, "reinstall pytest-lasertest so pytest finds its entry point"
     ),
 )
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -24,7 +24,7 @@ class Sector:
     """An arc of directions in the base frame, counter-clockwise from `start`."""
 
     start: float  # rad, in [-pi, pi)
-    extent: float  # rad, in (0, 2 pi]
+    extent: float  # rad, in [0, 2 pi]
 
     @property
     def end(self) -> float:
@@ -69,8 +69,8 @@ def compare_coverage(
     max_speed: float,  # m/s
 ) -> CoverageComparison:
     """Compare what two scanners on the same robot can see."""
-    lost = sector_difference(_sector(baseline), _sector(candidate))
-    gained = sector_difference(_sector(candidate), _sector(baseline))
+    before, after = Sector(*baseline.sector_in_base()), Sector(*candidate.sector_in_base())
+    lost, gained = sector_difference(before, after), sector_difference(after, before)
     changes = [
         *_field_of_view(baseline, candidate, lost, gained),
         *_ranges(baseline, candidate),
@@ -108,11 +108,6 @@ def sure_detection_distance(profile: LaserProfile, size: float) -> float:
     return size / (2.0 * math.sin(profile.angle_increment / 2.0))
 
 
-def _sector(profile: LaserProfile) -> Sector:
-    start, extent = profile.sector_in_base()
-    return Sector(start, min(extent, FULL_TURN))
-
-
 def _cut(piece: tuple[float, float], low: float, high: float) -> list[tuple[float, float]]:
     start, stop = piece
     return [
@@ -136,8 +131,8 @@ def _field_of_view(
         parts.append("newly scans " + " and ".join(map(str, gained)))
     yield CoverageChange(
         "field of view",
-        baseline.max_angle - baseline.min_angle,
-        candidate.max_angle - candidate.min_angle,
+        baseline.sector_in_base()[1],
+        candidate.sector_in_base()[1],
         "rad",
         worse=bool(lost),
         detail="; ".join(parts) + " (base frame)",

@@ -111,10 +111,16 @@ class LaserProfile:
         return _directions_in_base(self.pose, self.beam_angles())
 
     def sector_in_base(self) -> tuple[float, float]:
-        """The scanned sector in the base frame as (start, extent), rad, counter-clockwise."""
+        """The directions the beams span in the base frame: (start, extent), rad, counter-clockwise.
+
+        A single beam spans no angle; a field of view written as a little over a full turn
+        (Gazebo's 6.28319) spans exactly one.
+        """
+        if self.beam_count == 1:
+            return float(self.beam_angles_in_base()[0]), 0.0
         ends = _directions_in_base(self.pose, np.array([self.min_angle, self.max_angle]))
         start = ends[1] if self.pose.is_upside_down() else ends[0]
-        return float(start), self.max_angle - self.min_angle
+        return float(start), min(self.max_angle - self.min_angle, FULL_TURN)
 
     def describe(self) -> str:
         """One line for reports: beams, field of view, range, rate and scan height."""

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from pytest_lasertest.spec.errors import Location
-from pytest_lasertest.spec.node import SpecNode
+from pytest_lasertest.spec.node import SpecNode, describe
 
 VARIABLES = {
     "x": "m",
@@ -36,6 +36,7 @@ _ARITHMETIC: dict[type[ast.operator], ArithmeticOperator] = {
     ast.Mult: "*",
     ast.Div: "/",
 }
+_REFUSED_COMPARISON = {ast.In: "in", ast.NotIn: "not in", ast.Is: "is", ast.IsNot: "is not"}
 _COMPARISON: dict[type[ast.cmpop], ComparisonOperator] = {
     ast.Lt: "<",
     ast.LtE: "<=",
@@ -121,7 +122,11 @@ def read_constraints(node: SpecNode) -> tuple[Constraint, ...]:
 
 def read_constraint(node: SpecNode) -> Constraint:
     """One constraint, or a SpecError naming what is not allowed in it."""
-    text = node.text()
+    text = node.value
+    if not isinstance(text, str) or not text.strip():
+        raise node.error(
+            f"expected a condition as text, got {describe(text)}", 'write it quoted, e.g. "x > 2"'
+        )
     if len(text) > MAX_LENGTH:
         raise node.error(
             f"the constraint is {len(text)} characters long", f"keep it under {MAX_LENGTH}"
@@ -164,7 +169,9 @@ def _comparison(node: ast.Compare) -> Formula:
     for op, left, right in zip(node.ops, terms, terms[1:], strict=False):
         if type(op) not in _COMPARISON:
             raise _Refused(
-                f"the comparison `{type(op).__name__}` is not allowed", "use <, <=, >, >=, == or !="
+                f"the comparison `{_REFUSED_COMPARISON.get(type(op), type(op).__name__)}` is not "
+                "allowed",
+                "use <, <=, >, >=, == or !=",
             )
         parts.append(Comparison(_COMPARISON[type(op)], left, right))
     return parts[0] if len(parts) == 1 else Junction("and", tuple(parts))
@@ -192,9 +199,13 @@ def _term(node: ast.expr) -> Term:
 def _number(value: object) -> Number:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise _Refused(f"{value!r} is not a number", "write a number, e.g. 0.3")
-    if not math.isfinite(value):
-        raise _Refused(f"{value!r} is not a finite number", "write a finite number")
-    return Number(float(value))
+    try:
+        number = float(value)
+    except OverflowError:
+        number = math.inf
+    if not math.isfinite(number):
+        raise _Refused(f"{str(value)[:20]} is not a finite number", "write a finite number")
+    return Number(number)
 
 
 def _name(name: str) -> Term:
@@ -221,7 +232,7 @@ def _arithmetic(operator: ArithmeticOperator, left: Term, right: Term) -> Term:
         raise _Refused(
             "dividing by a variable makes the constraint nonlinear", "divide by numbers only"
         )
-    if operator == "/" and isinstance(right, Number) and right.value == 0:
+    if operator == "/" and _value(right) == 0:
         raise _Refused("division by zero", "divide by a non-zero number")
     return Arithmetic(operator, left, right)
 
@@ -234,9 +245,10 @@ def _call(node: ast.Call) -> Term:
         )
     arguments = tuple(_term(argument) for argument in node.args)
     function: Literal["abs", "min", "max"] = node.func.id  # type: ignore[assignment]
-    expected = "exactly one" if function == "abs" else "at least two"
-    if (function == "abs" and len(arguments) != 1) or (function != "abs" and len(arguments) < 2):
-        raise _Refused(f"{function}() takes {expected} arguments", f"write e.g. {function}(y)")
+    if function == "abs" and len(arguments) != 1:
+        raise _Refused("abs() takes exactly one argument", "write e.g. abs(y)")
+    if function != "abs" and len(arguments) < 2:
+        raise _Refused(f"{function}() takes at least two arguments", f"write e.g. {function}(x, 0)")
     return Call(function, arguments)
 
 
@@ -253,3 +265,26 @@ def _has_variable(term: Term) -> bool:
         case Call(arguments=arguments):
             return any(_has_variable(argument) for argument in arguments)
     return False
+
+
+def _value(term: Term) -> float:
+    """The value of a term without variables; division by zero was refused when it was parsed."""
+    match term:
+        case Number(value=value):
+            return value
+        case Negative(operand=operand):
+            return -_value(operand)
+        case Arithmetic(operator="+", left=left, right=right):
+            return _value(left) + _value(right)
+        case Arithmetic(operator="-", left=left, right=right):
+            return _value(left) - _value(right)
+        case Arithmetic(operator="*", left=left, right=right):
+            return _value(left) * _value(right)
+        case Arithmetic(operator="/", left=left, right=right):
+            return _value(left) / _value(right)
+        case Call(function="abs", arguments=arguments):
+            return abs(_value(arguments[0]))
+        case Call(function=function, arguments=arguments):
+            values = [_value(argument) for argument in arguments]
+            return min(values) if function == "min" else max(values)
+    raise ValueError(f"{term} holds a variable")

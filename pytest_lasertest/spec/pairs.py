@@ -54,7 +54,11 @@ class PairsFile:
 
 def load_pairs_file(path: Path) -> PairsFile:
     """Read and validate a pairs file; any problem is a SpecError naming file, line and field."""
-    root = read_root(path, what="pairs file", needs="robot, world and pairs")
+    root = read_root(
+        path,
+        what="pairs file",
+        needs="robot, world and pairs; start from the annotated example in the README",
+    )
     sections = root.mapping(SECTIONS, what="pairs-file sections")
     for key in REQUIRED_SECTIONS:
         if key not in sections:

@@ -104,20 +104,28 @@ def load_yaml(path: Path) -> object:
     try:
         return loader.get_single_data()
     except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark or error.context_mark
-        line = mark.line + 1 if mark is not None else 1
-        raise SpecError(
-            Location(path, line),
-            "",
-            f"this is not valid YAML: {error.problem or error.context}",
-            f"check the indentation (spaces, not tabs) and the quoting around line {line}",
-        ) from None
+        raise _syntax_error(path, error) from None
     except yaml.YAMLError as error:
         raise SpecError(
             Location(path, 1), "", f"this is not valid YAML: {error}", "fix the syntax"
         ) from None
     finally:
         loader.dispose()
+
+
+def _syntax_error(path: Path, error: yaml.MarkedYAMLError) -> SpecError:
+    mark = error.problem_mark or error.context_mark
+    line = mark.line + 1 if mark is not None else 1
+    problem = f"this is not valid YAML: {error.problem or error.context}"
+    if error.problem and error.context and error.context_mark is not None:
+        # Where the parser gave up is often a line after the mistake; name where it began.
+        problem += f" ({error.context} that starts on line {error.context_mark.line + 1})"
+    return SpecError(
+        Location(path, line),
+        "",
+        problem,
+        f"check the indentation (spaces, not tabs) and the quoting around line {line}",
+    )
 
 
 def read_text(path: Path) -> str:

@@ -1,0 +1,52 @@
+"""Shared fixtures: pytester, and a valid pairs file to break one field at a time."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import hypothesis  # noqa: F401  (see below)
+import pytest
+
+import pytest_lasertest.collect  # noqa: F401  (see below)
+
+# hypothesis and pytest_lasertest.collect are imported only to stay loaded across pytester runs:
+# in-process runs drop the modules they imported, numpy cannot be imported twice in one process,
+# and Hypothesis's plugin would re-import hypothesis on every run.
+pytest_plugins = ["pytester"]
+
+REPO = Path(__file__).resolve().parents[1]
+EXAMPLES = REPO / "examples"
+
+# Line numbers matter: tests that break a field assert the line it is on.
+VALID_PAIRS = """\
+robot: husky
+world:
+  start: {x: 0.0, y: 0.0, yaw: 0.0}
+  goal: {x: 10.0, y: 0.0}
+  time_limit: 60.0
+settings:
+  min_obstacle_size: 0.05
+constraints:
+  - "x > 1"
+pairs:
+  to_lms111:
+    baseline:
+      samples: 720
+      min_angle: -1.57
+      max_angle: 1.57
+      range: {min: 0.1, max: 10.0}
+      update_rate: 50
+    candidate:
+      model: sick_lms111
+  same:
+    baseline: {model: hokuyo_ust_10lx}
+    candidate: {model: hokuyo_ust_10lx}
+"""
+
+
+@pytest.fixture
+def pairs_file(pytester: pytest.Pytester) -> Path:
+    """A valid pairs file, `gate.lasertest.yaml`, in the pytester directory."""
+    path = pytester.path / "gate.lasertest.yaml"
+    path.write_text(VALID_PAIRS)
+    return path

@@ -1,0 +1,36 @@
+"""The bundled examples: the paper's downgrades fail on the attribute each one changed."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+from tests.conftest import EXAMPLES
+
+
+def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
+    pytester: pytest.Pytester,
+) -> None:
+    shutil.copytree(EXAMPLES, pytester.path / "examples")
+    result = pytester.runpytest("examples", "-rA")
+    result.assert_outcomes(passed=1, failed=4)
+    result.stdout.fnmatch_lines(
+        ["PASSED examples/husky.lasertest.yaml::ust10_to_ust20[[]coverage[]]"]
+    )
+    output = result.stdout.str()
+    for pair, loss in [
+        ("blind_spot", "    field of view: 3.14 -> 2 rad; no longer scans [-1.570, -1.000] rad"),
+        (
+            "distance",
+            "    range.max: 10 -> 5 m; obstacles between 5.00 and 10.00 m are no longer seen",
+        ),
+        (
+            "size",
+            "    beam spacing: 0.10129 -> 0.209333 rad; a 0.051 m wide obstacle is sure to be",
+        ),
+        ("lms111_to_tim571_raised", "    update_rate: 50 -> 15 Hz; a scan every 66.7 ms"),
+        ("lms111_to_tim571_raised", "    scan height: 0.30795 -> 0.40795 m; scan plane raised"),
+    ]:
+        section = output.split(f" {pair}[coverage] ")[1]
+        assert loss in section.split("  other changes:")[0].split("  replay")[0]
