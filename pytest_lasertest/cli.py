@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import importlib.metadata
 import importlib.util
 import json
@@ -12,6 +13,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from pytest_lasertest.geometry import Pose3D
+from pytest_lasertest.sensor import LaserProfile
 from pytest_lasertest.spec import SpecError
 from pytest_lasertest.spec.bundled import bundled_robots
 from pytest_lasertest.spec.catalogue import load_catalogue
@@ -45,47 +47,75 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
 
 
+@dataclass(frozen=True)
+class ModelFigures:
+    """One catalogue model as `lasertest catalogue` shows it."""
+
+    model: str
+    name: str
+    fov_deg: float
+    beams: int
+    step_deg: float
+    range_min_m: float
+    range_max_m: float
+    update_rate_hz: float
+    noise_stddev_m: float | None
+
+    @classmethod
+    def of(cls, model: str, name: str, profile: LaserProfile) -> ModelFigures:
+        return cls(
+            model=model,
+            name=name,
+            fov_deg=round(math.degrees(profile.max_angle - profile.min_angle), 2),
+            beams=profile.beam_count,
+            step_deg=round(math.degrees(profile.angle_increment), 4),
+            range_min_m=profile.range_min,
+            range_max_m=profile.range_max,
+            update_rate_hz=profile.update_rate,
+            noise_stddev_m=profile.noise.stddev if profile.noise else None,
+        )
+
+    def cells(self) -> tuple[str, ...]:
+        noise = "-" if self.noise_stddev_m is None else f"{self.noise_stddev_m * 1e3:g}"
+        return (
+            self.model,
+            f"{self.fov_deg:g}",
+            str(self.beams),
+            f"{self.step_deg:.3f}",
+            f"{self.range_min_m:g}-{self.range_max_m:g}",
+            f"{self.update_rate_hz:g}",
+            noise,
+            self.name,
+        )
+
+
+CATALOGUE_HEADER = (
+    "model",
+    "FOV deg",
+    "beams",
+    "step deg",
+    "range m",
+    "rate Hz",
+    "noise mm",
+    "name",
+)
+
+
 def print_catalogue(*, as_json: bool) -> int:
     """Print every catalogue model with the figures that matter for a 2D scan."""
-    rows = []
-    for key, entry in load_catalogue().entries.items():
-        profile = entry.profile(Pose3D())
-        rows.append(
-            {
-                "model": key,
-                "name": entry.name,
-                "fov_deg": round(math.degrees(profile.max_angle - profile.min_angle), 2),
-                "beams": profile.beam_count,
-                "step_deg": round(math.degrees(profile.angle_increment), 4),
-                "range_min_m": profile.range_min,
-                "range_max_m": profile.range_max,
-                "update_rate_hz": profile.update_rate,
-                "noise_stddev_m": profile.noise.stddev if profile.noise else None,
-            }
-        )
+    rows = [
+        ModelFigures.of(key, entry.name, entry.profile(Pose3D()))
+        for key, entry in load_catalogue().entries.items()
+    ]
     if as_json:
-        print(json.dumps(rows, indent=2))
+        print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
     else:
-        print(_table(rows))
+        print(_table([CATALOGUE_HEADER, *(row.cells() for row in rows)]))
     return 0
 
 
-def _table(rows: list[dict[str, object]]) -> str:
-    header = ("model", "FOV deg", "beams", "step deg", "range m", "rate Hz", "noise mm", "name")
-    lines = [header] + [
-        (
-            str(row["model"]),
-            f"{row['fov_deg']:g}",
-            str(row["beams"]),
-            f"{row['step_deg']:.3f}",
-            f"{row['range_min_m']:g}-{row['range_max_m']:g}",
-            f"{row['update_rate_hz']:g}",
-            "-" if row["noise_stddev_m"] is None else f"{float(row['noise_stddev_m']) * 1e3:g}",  # type: ignore[arg-type]
-            str(row["name"]),
-        )
-        for row in rows
-    ]
-    widths = [max(len(line[column]) for line in lines) for column in range(len(header))]
+def _table(lines: list[tuple[str, ...]]) -> str:
+    widths = [max(len(line[column]) for line in lines) for column in range(len(lines[0]))]
     return "\n".join(
         "  ".join(cell.ljust(width) for cell, width in zip(line, widths, strict=True)).rstrip()
         for line in lines

@@ -20,7 +20,7 @@ from pytest_lasertest.spec.errors import display_path
 class PairFile(pytest.File):
     """A pairs file; a file that cannot be used is one collection error naming file and line."""
 
-    is_pairs_file = True
+    spares_the_run = True  # a broken pairs file does not stop the other files (LaserSession)
 
     def collect(self) -> list[pytest.Item]:
         try:

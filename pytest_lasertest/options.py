@@ -110,6 +110,6 @@ def parse_pairs(texts: Iterable[str], base: Path, source: str) -> tuple[Path, ..
     return tuple(paths)
 
 
-def is_pairs_file(path: Path, named: Iterable[Path]) -> bool:
-    """Whether pytest should collect `path` as a pairs file."""
-    return path.name.endswith(PAIRS_SUFFIXES) or path.resolve() in set(named)
+def is_pairs_file(path: Path, named: frozenset[Path]) -> bool:
+    """Whether pytest should collect `path` (any file it visits) as a pairs file."""
+    return path.name.endswith(PAIRS_SUFFIXES) or (bool(named) and path.resolve() in named)

@@ -1,7 +1,7 @@
-"""The pytest entry point: options, configuration and collection hooks.
+"""The pytest entry point: options and configuration.
 
-Nothing heavy is imported here: z3, pybullet and hypothesis load only when an item needs them,
-so installing the plugin costs nothing to test runs that do not use it.
+It imports only the option parsers and the session object: the collection code, numpy and YAML
+load when pytest first meets a pairs file, so test runs without one pay nothing for the plugin.
 """
 
 from __future__ import annotations
@@ -95,7 +95,7 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
     if seed is None:
         # xdist workers take the controller's seed so that they all agree.
         workerinput = getattr(config, "workerinput", {})
-        seed = workerinput.get(SEED_KEY, fresh_seed())
+        seed = workerinput[SEED_KEY] if SEED_KEY in workerinput else fresh_seed()
     profile = config.getoption("laser_profile")
     artifacts = config.getoption("laser_artifacts")
     return LaserOptions(

@@ -16,6 +16,7 @@ class LaserSession:
 
     def __init__(self, options: LaserOptions) -> None:
         self.options = options
+        self.named_files = frozenset(options.pairs)
         self.broken_files = 0
 
     def pytest_report_header(self, config: pytest.Config) -> str:
@@ -23,7 +24,7 @@ class LaserSession:
         return f"lasertest: {self.options.replay_options()}{artifacts}"
 
     def pytest_collect_file(self, file_path: Path, parent: pytest.Collector) -> pytest.File | None:
-        if not is_pairs_file(file_path, self.options.pairs):
+        if not is_pairs_file(file_path, self.named_files):
             return None
         from pytest_lasertest.collect import PairFile
 
@@ -35,7 +36,7 @@ class LaserSession:
         self, collector: pytest.Collector
     ) -> Generator[None, pytest.CollectReport, pytest.CollectReport]:
         report = yield
-        if report.failed and getattr(collector, "is_pairs_file", False):
+        if report.failed and getattr(collector, "spares_the_run", False):
             self.broken_files += 1
         return report
 

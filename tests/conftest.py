@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import hypothesis  # noqa: F401  (see below)
 import pytest
 
 import pytest_lasertest.collect  # noqa: F401  (see below)
+from pytest_lasertest.sensor import LaserProfile
 
 # hypothesis and pytest_lasertest.collect are imported only to stay loaded across pytester runs:
 # in-process runs drop the modules they imported, numpy cannot be imported twice in one process,
@@ -50,3 +52,17 @@ def pairs_file(pytester: pytest.Pytester) -> Path:
     path = pytester.path / "gate.lasertest.yaml"
     path.write_text(VALID_PAIRS)
     return path
+
+
+def profile(**overrides: Any) -> LaserProfile:
+    """The paper's scanner (720 beams over +-1.57 rad, 0.1-10 m, 50 Hz) with `overrides`."""
+    fields: dict[str, Any] = {
+        "samples": 720,
+        "min_angle": -1.57,
+        "max_angle": 1.57,
+        "range_min": 0.1,
+        "range_max": 10.0,
+        "update_rate": 50.0,
+    }
+    fields.update(overrides)
+    return LaserProfile(**fields)

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 
 import pytest
 
@@ -330,13 +329,14 @@ def test_a_pairs_file_that_is_not_utf8_names_the_line_of_the_bad_byte(
     assert_one_clean_error(result, 2, "", binary)
 
 
+@pytest.mark.parametrize("workers", [[], ["-n", "2"]], ids=["serial", "xdist"])
 def test_a_broken_pairs_file_does_not_stop_the_other_files_from_running(
-    pytester: pytest.Pytester,
+    pytester: pytest.Pytester, workers: list[str]
 ) -> None:
     (pytester.path / "broken.lasertest.yaml").write_text("robot: [husky\n")
     (pytester.path / "good.lasertest.yaml").write_text(GOOD_PAIRS)
     pytester.makepyfile(test_unit="def test_the_project_s_own_test(): pass")
-    result = pytester.runpytest()
+    result = pytester.runpytest_subprocess(*workers)
     result.assert_outcomes(passed=2, errors=1)
     assert result.ret == pytest.ExitCode.TESTS_FAILED
     result.stdout.fnmatch_lines(["*ERROR collecting broken.lasertest.yaml*", "*1 error*"])
@@ -369,8 +369,8 @@ def test_fulltrace_shows_where_in_the_plugin_the_error_was_raised(
     result.stdout.fnmatch_lines(["*pytest_lasertest/collect.py:*", "*CollectError*"])
 
 
-def test_a_missing_robot_directory_is_resolved_next_to_the_pairs_file(
-    pytester: pytest.Pytester, tmp_path: Path
+def test_a_robot_directory_next_to_the_pairs_file_is_found_by_its_relative_path(
+    pytester: pytest.Pytester,
 ) -> None:
     robot_dir = pytester.path / "robots" / "mybot"
     robot_dir.mkdir(parents=True)

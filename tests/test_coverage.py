@@ -18,23 +18,11 @@ from pytest_lasertest.coverage import (
 )
 from pytest_lasertest.geometry import Pose3D
 from pytest_lasertest.sensor import GaussianNoise, LaserProfile
+from tests.conftest import profile
 
 HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.30795), (3.14159, 0.0, 0.0))
 PAPER_SIZE = 0.0507  # m, the paper's "size" pole
 MAX_SPEED = 1.0  # m/s
-
-
-def profile(**overrides: Any) -> LaserProfile:
-    fields: dict[str, Any] = {
-        "samples": 720,
-        "min_angle": -1.57,
-        "max_angle": 1.57,
-        "range_min": 0.1,
-        "range_max": 10.0,
-        "update_rate": 50.0,
-    }
-    fields.update(overrides)
-    return LaserProfile(**fields)
 
 
 def husky(**overrides: Any) -> LaserProfile:

@@ -10,22 +10,10 @@ import numpy as np
 import pytest
 
 from pytest_lasertest.geometry import Pose3D, wrap_angle
-from pytest_lasertest.sensor import GaussianNoise, LaserProfile, ProfileError
+from pytest_lasertest.sensor import GaussianNoise, ProfileError
+from tests.conftest import profile
 
 HUSKY_ROLL = 3.14159  # rad, as the Husky description writes "upside down"
-
-
-def profile(**overrides: Any) -> LaserProfile:
-    fields: dict[str, Any] = {
-        "samples": 720,
-        "min_angle": -1.57,
-        "max_angle": 1.57,
-        "range_min": 0.1,
-        "range_max": 10.0,
-        "update_rate": 50.0,
-    }
-    fields.update(overrides)
-    return LaserProfile(**fields)
 
 
 def angular_gap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
