@@ -72,7 +72,7 @@ def compare_coverage(
     before, after = Sector(*baseline.sector_in_base()), Sector(*candidate.sector_in_base())
     lost, gained = sector_difference(before, after), sector_difference(after, before)
     changes = [
-        *_field_of_view(baseline, candidate, lost, gained),
+        *_field_of_view(before, after, lost, gained),
         *_ranges(baseline, candidate),
         *_beam_spacing(baseline, candidate, min_obstacle_size),
         *_update_rate(baseline, candidate, max_speed),
@@ -120,7 +120,7 @@ def _wrap(angle: float) -> float:
 
 
 def _field_of_view(
-    baseline: LaserProfile, candidate: LaserProfile, lost: list[Sector], gained: list[Sector]
+    before: Sector, after: Sector, lost: list[Sector], gained: list[Sector]
 ) -> Iterator[CoverageChange]:
     if not lost and not gained:
         return
@@ -131,8 +131,8 @@ def _field_of_view(
         parts.append("newly scans " + " and ".join(map(str, gained)))
     yield CoverageChange(
         "field of view",
-        baseline.sector_in_base()[1],
-        candidate.sector_in_base()[1],
+        before.extent,
+        after.extent,
         "rad",
         worse=bool(lost),
         detail="; ".join(parts) + " (base frame)",
