@@ -37,7 +37,7 @@ class Catalogue:
 
     def find(self, node: SpecNode) -> CatalogueEntry:
         """The entry a `model:` value names, or an error with the closest names."""
-        key = node.text()
+        key = node.text(what="a model name", fix="`lasertest catalogue` lists the model names")
         if key in self.entries:
             return self.entries[key]
         close = difflib.get_close_matches(key, list(self.entries), n=3, cutoff=0.5)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from pytest_lasertest.spec.errors import Location
-from pytest_lasertest.spec.node import SpecNode, describe
+from pytest_lasertest.spec.node import SpecNode
 
 VARIABLES = {
     "x": "m",
@@ -122,11 +122,7 @@ def read_constraints(node: SpecNode) -> tuple[Constraint, ...]:
 
 def read_constraint(node: SpecNode) -> Constraint:
     """One constraint, or a SpecError naming what is not allowed in it."""
-    text = node.value
-    if not isinstance(text, str) or not text.strip():
-        raise node.error(
-            f"expected a condition as text, got {describe(text)}", 'write it quoted, e.g. "x > 2"'
-        )
+    text = node.text(what="a condition as text", fix='write it quoted, e.g. "x > 2"')
     if len(text) > MAX_LENGTH:
         raise node.error(
             f"the constraint is {len(text)} characters long", f"keep it under {MAX_LENGTH}"

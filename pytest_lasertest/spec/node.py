@@ -65,10 +65,10 @@ class SpecNode:
             )
         ]
 
-    def text(self) -> str:
-        """This value as a non-empty string."""
+    def text(self, *, what: str = "text", fix: str = "write a name or a path") -> str:
+        """This value as a non-empty string; `what` and `fix` say what belongs here."""
         if not isinstance(self.value, str) or not self.value.strip():
-            raise self.error(f"expected text, got {describe(self.value)}", "write a name or a path")
+            raise self.error(f"expected {what}, got {describe(self.value)}", fix)
         return self.value
 
     def number(self, unit: str) -> float:

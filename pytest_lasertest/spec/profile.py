@@ -99,7 +99,7 @@ def _noise(fields: Mapping[str, SpecNode]) -> GaussianNoise | None:
     if not any(key.startswith("noise.") for key in fields):
         return None
     kind = fields.get("noise.type")
-    if kind is not None and kind.text() != "gaussian":
+    if kind is not None and kind.text(what="a noise type", fix="write `gaussian`") != "gaussian":
         raise kind.error(
             f"noise type {kind.value!r} is not modelled",
             "use `type: gaussian` as Gazebo's <ray> does",
