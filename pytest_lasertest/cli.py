@@ -1,4 +1,5 @@
-"""The `lasertest` command: `catalogue` lists scanner models, `doctor` checks the installation."""
+"""The `lasertest` command: `plan` finds placements, `catalogue` lists scanner models, `doctor`
+checks the installation."""
 
 from __future__ import annotations
 
@@ -11,10 +12,11 @@ import math
 import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 from pytest_lasertest.geometry import Pose3D
 from pytest_lasertest.sensor import LaserProfile
-from pytest_lasertest.spec import SpecError
+from pytest_lasertest.spec import SpecError, load_pairs_file
 from pytest_lasertest.spec.bundled import bundled_robots
 from pytest_lasertest.spec.catalogue import load_catalogue
 from pytest_lasertest.spec.robot import load_robot_file
@@ -34,11 +36,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run one subcommand; the exit status is 0 on success."""
     parser = argparse.ArgumentParser(prog="lasertest", description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
+    plan = commands.add_parser("plan", help="find the placements that tell each pair apart")
+    plan.add_argument("pairs_file", type=Path, metavar="PAIRS.yaml")
+    plan.add_argument("--json", action="store_true", help="print the JSON contract")
     catalogue = commands.add_parser("catalogue", help="list the scanner models `model:` can name")
     catalogue.add_argument("--json", action="store_true", help="print JSON instead of a table")
     commands.add_parser("doctor", help="check the installation and say what to fix")
     args = parser.parse_args(argv)
     try:
+        if args.command == "plan":
+            return print_plan(args.pairs_file, as_json=args.json)
         if args.command == "catalogue":
             return print_catalogue(as_json=args.json)
         return run_doctor()
@@ -99,6 +106,20 @@ CATALOGUE_HEADER = (
     "noise mm",
     "name",
 )
+
+
+def print_plan(path: Path, *, as_json: bool) -> int:
+    """Solve every pair of a pairs file and print the verified witnesses."""
+    from pytest_lasertest.plan_report import plan_json, plan_text
+    from pytest_lasertest.solver.plan import plan_pair
+
+    spec = load_pairs_file(path)
+    plans = [plan_pair(spec, pair) for pair in spec.pairs]
+    if as_json:
+        print(json.dumps({"pairs": [plan_json(plan) for plan in plans]}, indent=2))
+    else:
+        print("\n".join(plan_text(plan) for plan in plans))
+    return 0
 
 
 def print_catalogue(*, as_json: bool) -> int:

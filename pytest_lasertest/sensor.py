@@ -110,6 +110,22 @@ class LaserProfile:
         """
         return _directions_in_base(self.pose, self.beam_angles())
 
+    def rays(self, poses: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """World-frame beams of the scans taken at robot poses [x, y, yaw], shape (T, 3).
+
+        Returns origins and unit directions, each shape (T, N, 2), m.
+        """
+        mount_x, mount_y, _ = self.pose.xyz
+        cos, sin = np.cos(poses[:, 2]), np.sin(poses[:, 2])
+        origin_x = poses[:, 0] + cos * mount_x - sin * mount_y
+        origin_y = poses[:, 1] + sin * mount_x + cos * mount_y
+        angles = poses[:, 2:3] + self.beam_angles_in_base()[np.newaxis, :]
+        directions = np.stack([np.cos(angles), np.sin(angles)], axis=-1)
+        origins = np.broadcast_to(
+            np.stack([origin_x, origin_y], axis=-1)[:, np.newaxis, :], directions.shape
+        )
+        return origins, directions
+
     def sector_in_base(self) -> tuple[float, float]:
         """The directions the beams span in the base frame: (start, extent), rad, counter-clockwise.
 

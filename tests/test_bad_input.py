@@ -273,6 +273,22 @@ CASES = {
         "0 m is no obstacle",
         "write a positive width in m",
     ),
+    "a largest obstacle smaller than the smallest": Case(
+        "min_obstacle_size: 0.05",
+        "min_obstacle_size: 0.05\n  max_obstacle_size: 0.01",
+        8,
+        "settings.max_obstacle_size",
+        "max_obstacle_size 0.01 m is below min_obstacle_size 0.05 m",
+        "make max_obstacle_size at least as large",
+    ),
+    "no witnesses asked for": Case(
+        "min_obstacle_size: 0.05",
+        "min_obstacle_size: 0.05\n  witnesses: 0",
+        8,
+        "settings.witnesses",
+        "0 witnesses per direction",
+        "write a number from 1 to 20",
+    ),
 }
 
 
@@ -374,13 +390,76 @@ def test_a_robot_directory_next_to_the_pairs_file_is_found_by_its_relative_path(
 ) -> None:
     robot_dir = pytester.path / "robots" / "mybot"
     robot_dir.mkdir(parents=True)
-    (robot_dir / "robot.yaml").write_text(
-        "name: My bot\n"
-        "laser_mount: {xyz: [0.2, 0, 0.3], rpy: [0, 0, 0]}\n"
-        "max_linear_velocity: 0.8\n"
-    )
+    (robot_dir / "robot.yaml").write_text(MY_ROBOT)
     (pytester.path / "gate.lasertest.yaml").write_text(
         VALID_PAIRS.replace("robot: husky", "robot: robots/mybot")
     )
     result = pytester.runpytest()
     result.assert_outcomes(passed=1, failed=1)
+
+
+MY_ROBOT = """\
+name: My bot
+laser_mount: {xyz: [0.2, 0, 0.3], rpy: [0, 0, 0]}
+footprint: [[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]
+max_linear_velocity: 0.8
+max_linear_acceleration: 1.5
+max_angular_velocity: 1.2
+"""
+
+ROBOT_CASES = {
+    "a footprint that is not convex": (
+        "[[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]",
+        "[[-0.3, -0.2], [0.3, -0.2], [0.0, 0.0], [0.3, 0.2], [-0.3, 0.2]]",
+        3,
+        "footprint",
+        "the corners do not form a convex polygon",
+    ),
+    "a footprint beside the robot": (
+        "[[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]",
+        "[[1.0, 1.0], [2.0, 1.0], [2.0, 2.0]]",
+        3,
+        "footprint",
+        "the polygon does not contain the robot's origin",
+    ),
+    "a footprint of two corners": (
+        "[[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]",
+        "[[-0.3, -0.2], [0.3, 0.2]]",
+        3,
+        "footprint",
+        "2 corners enclose no area",
+    ),
+    "a robot that cannot brake": (
+        "max_linear_acceleration: 1.5",
+        "max_linear_acceleration: 0",
+        5,
+        "max_linear_acceleration",
+        "0 m/s^2 cannot be how hard it brakes",
+    ),
+    "a missing turn rate": (
+        "max_angular_velocity: 1.2\n",
+        "",
+        1,
+        "max_angular_velocity",
+        "max_angular_velocity is missing",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", ROBOT_CASES.values(), ids=ROBOT_CASES.keys())
+def test_a_broken_robot_file_is_a_collection_error_naming_its_line_and_field(
+    pytester: pytest.Pytester, case: tuple[str, str, int, str, str]
+) -> None:
+    old, new, line, field, problem = case
+    robot_dir = pytester.path / "robots" / "mybot"
+    robot_dir.mkdir(parents=True)
+    (robot_dir / "robot.yaml").write_text(MY_ROBOT.replace(old, new))
+    (pytester.path / "gate.lasertest.yaml").write_text(
+        VALID_PAIRS.replace("robot: husky", "robot: robots/mybot")
+    )
+    result = pytester.runpytest()
+    result.assert_outcomes(errors=1)
+    result.stdout.fnmatch_lines(
+        [f"robots/mybot/robot.yaml:{line}: {field}: {problem}*", "  fix: *"]
+    )
+    result.stdout.no_fnmatch_line("*Traceback*")

@@ -5,10 +5,12 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
 from pytest_lasertest import cli
+from pytest_lasertest.cli import main
 
 REQUIRED_MODELS = {
     "sick_lms111",
@@ -94,3 +96,75 @@ def test_the_console_script_runs_and_prints_no_pybullet_banner() -> None:
     )
     assert result.returncode == 0, result.stdout + result.stderr
     assert "build time" not in result.stdout + result.stderr
+
+
+SIZE_PAIR = """\
+robot: husky
+world:
+  start: {x: 0.0, y: 0.0, yaw: 0.0}
+  goal: {x: 6.0, y: 0.0}
+  time_limit: 60.0
+settings:
+  min_obstacle_size: 0.0507
+  witnesses: 1
+pairs:
+  size:
+    baseline: {model: clearpath_lms1xx_gazebo, samples: 32, range: {max: 10.0}}
+    candidate: {model: clearpath_lms1xx_gazebo, samples: 16, range: {max: 10.0}}
+"""
+
+
+def test_plan_json_keeps_the_documented_contract_and_is_the_same_every_run(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    pairs = tmp_path / "size.lasertest.yaml"
+    pairs.write_text(SIZE_PAIR)
+    assert main(["plan", str(pairs), "--json"]) == 0
+    first = capsys.readouterr().out
+    assert main(["plan", str(pairs), "--json"]) == 0
+    assert capsys.readouterr().out == first
+    (pair,) = json.loads(first)["pairs"]
+    assert set(pair) == {
+        "name",
+        "status",
+        "explanation",
+        "baseline",
+        "candidate",
+        "start",
+        "goal",
+        "path",
+        "witnesses",
+    }
+    assert pair["status"] == "sat"
+    assert pair["path"] == [[0.0, 0.0], [6.0, 0.0]]
+    assert pair["candidate"]["samples"] == 16
+    assert set(pair["candidate"]) >= {"range_min", "range_max", "update_rate", "mount"}
+    assert [w["id"] for w in pair["witnesses"]] == ["candidate-misses-0", "baseline-misses-0"]
+    witness = pair["witnesses"][0]
+    assert witness["detected_by"] == "baseline"
+    assert witness["margin"] >= 0.005
+    assert witness["obstacle"]["shape"] in {"box", "cylinder"}
+    assert len(witness["pose"]) == 3
+
+
+def test_plan_prints_each_witness_with_its_margin(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    pairs = tmp_path / "size.lasertest.yaml"
+    pairs.write_text(SIZE_PAIR)
+    assert main(["plan", str(pairs)]) == 0
+    out = capsys.readouterr().out
+    assert "candidate-misses-0: " in out
+    assert "read by the baseline" in out
+    assert "margin 20.0 mm" in out
+
+
+def test_plan_of_a_broken_pairs_file_names_the_line_and_exits_2(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    pairs = tmp_path / "size.lasertest.yaml"
+    pairs.write_text(SIZE_PAIR.replace("witnesses: 1", "witnesses: 0"))
+    assert main(["plan", str(pairs)]) == 2
+    assert "size.lasertest.yaml:8: settings.witnesses: 0 witnesses per direction" in (
+        capsys.readouterr().err
+    )

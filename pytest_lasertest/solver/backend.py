@@ -1,6 +1,15 @@
-"""The one place that builds Z3 solvers: pinned seed, budget in resource units, never wall time."""
+"""The one place that builds Z3 solvers: pinned seed, budget in resource units, never wall time.
+
+Queries come in as labelled SMT-LIB blocks over real variables and leave as a `Solution`: Z3's
+own objects never leave this module.
+"""
 
 from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Literal
 
 import z3
 
@@ -9,21 +18,78 @@ import z3
 RLIMIT = 5_000_000
 SEED = 0
 
+Verdict = Literal["sat", "unsat", "unknown"]
 
-def make_solver(rlimit: int = RLIMIT) -> z3.Solver:
+
+@dataclass(frozen=True)
+class Solution:
+    """Z3's answer: a model's values when sat, the labels of an unsat core when unsat."""
+
+    verdict: Verdict
+    values: Mapping[str, float]
+    core: tuple[str, ...] = ()
+    reason: str = ""  # why Z3 gave up, when unknown
+
+
+def make_solver(rlimit: int = RLIMIT, context: z3.Context | None = None) -> z3.Solver:
     """A fresh solver with the project's seed and resource limit."""
-    solver = z3.Solver()
+    solver = z3.Solver(ctx=context)
     solver.set("random_seed", SEED)
     solver.set("rlimit", rlimit)
     return solver
 
 
+def make_optimizer(rlimit: int = RLIMIT, context: z3.Context | None = None) -> z3.Optimize:
+    """A fresh optimiser with the project's seed and resource limit."""
+    optimizer = z3.Optimize(ctx=context)
+    optimizer.set("random_seed", SEED)
+    optimizer.set("rlimit", rlimit)
+    return optimizer
+
+
+def solve(
+    variables: Sequence[str],
+    blocks: Mapping[str, str],
+    maximize: Sequence[str] = (),
+    rlimit: int = RLIMIT,
+) -> Solution:
+    """Check the conjunction of labelled SMT-LIB formulas over real `variables`.
+
+    The model maximises the `maximize` terms in order (`-S` minimises S). An unsat answer names
+    the labels of the blocks that together admit no model.
+    """
+    declarations = "".join(f"(declare-const {name} Real)" for name in variables)
+    # A context of its own: Z3's shared context keeps state between queries, and the same query
+    # must get the same model whatever ran before it in this process.
+    context = z3.Context()
+    # Optimising is much dearer than deciding: a plain solver when nothing is to be maximised.
+    optimizer = make_optimizer(rlimit, context) if maximize else make_solver(rlimit, context)
+    for label, text in blocks.items():
+        formula = z3.parse_smt2_string(f"{declarations}(assert {text})", ctx=context)
+        optimizer.assert_and_track(z3.And(*formula), z3.Bool(label, context))
+    for term in maximize:
+        variable = z3.Real(term.lstrip("-"), context)
+        optimizer.maximize(-variable if term.startswith("-") else variable)
+    verdict = optimizer.check()
+    if verdict == z3.sat:
+        model = optimizer.model()
+        return Solution("sat", {name: _value(model, z3.Real(name, context)) for name in variables})
+    if verdict == z3.unsat:
+        return Solution("unsat", {}, tuple(sorted(str(label) for label in optimizer.unsat_core())))
+    return Solution("unknown", {}, reason=optimizer.reason_unknown())
+
+
+def _value(model: z3.ModelRef, variable: z3.ArithRef) -> float:
+    value = model.eval(variable, model_completion=True)
+    if z3.is_rational_value(value):
+        return float(Fraction(value.numerator_as_long(), value.denominator_as_long()))
+    # An algebraic number (never from linear constraints, but Z3 may say so): approximate it.
+    return float(value.approx(20).as_fraction())
+
+
 def self_test() -> str:
     """Solve a tiny problem under the resource limit; describe the Z3 that did it."""
-    solver = make_solver()
-    x = z3.Real("x")
-    solver.add(x > 1, x < 2)
-    verdict = solver.check()
-    if verdict != z3.sat:
-        raise RuntimeError(f"Z3 answered {verdict} to 1 < x < 2, which is satisfiable")
+    solution = solve(("x",), {"bounds": "(and (> x 1.0) (< x 2.0))"})
+    if solution.verdict != "sat":
+        raise RuntimeError(f"Z3 answered {solution.verdict} to 1 < x < 2, which is satisfiable")
     return f"z3 {z3.get_version_string()}: solved a test problem under rlimit {RLIMIT}"

@@ -18,8 +18,9 @@ from pytest_lasertest.spec.world import World, read_world
 
 SECTIONS = ("robot", "world", "settings", "constraints", "pairs")
 REQUIRED_SECTIONS = ("robot", "world", "pairs")
-SETTINGS_KEYS = ("min_obstacle_size",)
+SETTINGS_KEYS = ("min_obstacle_size", "max_obstacle_size", "witnesses")
 # Pair names become part of test ids (`file::NAME[...]`), which `::`, `[` and spaces would break.
+MAX_WITNESSES = 20
 PAIR_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*\Z")
 
 
@@ -28,6 +29,8 @@ class Settings:
     """How a pairs file tunes the gate."""
 
     min_obstacle_size: float = 0.05  # m, the thinnest obstacle the robot must see
+    max_obstacle_size: float = 1.0  # m, the widest obstacle placed
+    witnesses: int = 3  # per pair and direction: one test item each
 
 
 @dataclass(frozen=True)
@@ -80,12 +83,31 @@ def _read_settings(node: SpecNode | None) -> Settings:
     if node is None:
         return Settings()
     fields = node.mapping(SETTINGS_KEYS, what="settings")
-    size = fields.get("min_obstacle_size")
-    if size is None:
-        return Settings()
-    if size.number("m") <= 0:
-        raise size.error(f"{size.value} m is no obstacle", "write a positive width in m, e.g. 0.05")
-    return Settings(min_obstacle_size=size.number("m"))
+    defaults = Settings()
+    smallest = _size(fields.get("min_obstacle_size"), defaults.min_obstacle_size)
+    largest = _size(fields.get("max_obstacle_size"), defaults.max_obstacle_size)
+    if largest < smallest:
+        raise fields.get("max_obstacle_size", node).error(
+            f"max_obstacle_size {largest} m is below min_obstacle_size {smallest} m",
+            "make max_obstacle_size at least as large as min_obstacle_size",
+        )
+    count = fields.get("witnesses")
+    witnesses = defaults.witnesses
+    if count is not None:
+        witnesses = count.whole_number()
+        if not 1 <= witnesses <= MAX_WITNESSES:
+            raise count.error(
+                f"{witnesses} witnesses per direction", f"write a number from 1 to {MAX_WITNESSES}"
+            )
+    return Settings(smallest, largest, witnesses)
+
+
+def _size(node: SpecNode | None, default: float) -> float:
+    if node is None:
+        return default
+    if node.number("m") <= 0:
+        raise node.error(f"{node.value} m is no obstacle", "write a positive width in m, e.g. 0.05")
+    return node.number("m")
 
 
 def _read_pairs(node: SpecNode, catalogue: Catalogue, mount: Pose3D) -> tuple[Pair, ...]:

@@ -6,11 +6,22 @@ import difflib
 from pathlib import Path
 
 from pytest_lasertest.geometry import Pose3D
-from pytest_lasertest.robot import Robot
+from pytest_lasertest.robot import Robot, pad_footprint
 from pytest_lasertest.spec.bundled import ROBOT_FILE, bundled_robots
 from pytest_lasertest.spec.node import SpecNode, read_root
 
-ROBOT_KEYS = ("name", "laser_mount", "max_linear_velocity")
+REQUIRED_KEYS = (
+    "name",
+    "laser_mount",
+    "footprint",
+    "max_linear_velocity",
+    "max_linear_acceleration",
+    "max_angular_velocity",
+)
+OPTIONAL_KEYS = ("footprint_padding", "nominal_speed", "nominal_turn_rate", "reaction_time")
+ROBOT_KEYS = REQUIRED_KEYS + OPTIONAL_KEYS
+# move_base's default controller_frequency is 20 Hz: a scan reaches the wheels one period later.
+DEFAULT_REACTION_TIME = 0.05  # s
 
 
 def read_robot(node: SpecNode) -> Robot:
@@ -20,23 +31,82 @@ def read_robot(node: SpecNode) -> Robot:
 
 def load_robot_file(path: Path) -> Robot:
     """A robot from its robot.yaml."""
-    root = read_root(path, what="robot file", needs=", ".join(ROBOT_KEYS))
+    root = read_root(path, what="robot file", needs=", ".join(REQUIRED_KEYS))
     fields = root.mapping(ROBOT_KEYS, what="robot fields")
-    for key in ROBOT_KEYS:
+    for key in REQUIRED_KEYS:
         if key not in fields:
-            raise root.missing(key, f"a robot file needs {', '.join(ROBOT_KEYS)}")
-    mount = fields["laser_mount"].mapping(("xyz", "rpy"), what="mount pose fields")
-    for key in ("xyz", "rpy"):
-        if key not in mount:
-            raise fields["laser_mount"].missing(key, f"write `{key}: [0.0, 0.0, 0.0]`")
-    speed = fields["max_linear_velocity"]
-    if speed.number("m/s") <= 0:
-        raise speed.error(f"{speed.value} m/s cannot move the robot", "write its top speed in m/s")
+            raise root.missing(key, f"a robot file needs {', '.join(REQUIRED_KEYS)}")
+    top_speed = _positive(fields["max_linear_velocity"], "m/s", "its top speed")
+    padding = fields["footprint_padding"].number("m") if "footprint_padding" in fields else 0.0
     return Robot(
         name=fields["name"].text(),
-        laser_mount=Pose3D(xyz=mount["xyz"].triple("m"), rpy=mount["rpy"].triple("rad")),
-        max_linear_velocity=speed.number("m/s"),
+        laser_mount=_mount(fields["laser_mount"]),
+        footprint=pad_footprint(_footprint(fields["footprint"]), padding),
+        max_linear_velocity=top_speed,
+        max_linear_acceleration=_positive(
+            fields["max_linear_acceleration"], "m/s^2", "how hard it brakes"
+        ),
+        nominal_speed=_optional(fields, "nominal_speed", "m/s", "its cruising speed", top_speed),
+        nominal_turn_rate=_optional(
+            fields,
+            "nominal_turn_rate",
+            "rad/s",
+            "how fast it turns in place",
+            _positive(fields["max_angular_velocity"], "rad/s", "its top turn rate"),
+        ),
+        reaction_time=_optional(
+            fields, "reaction_time", "s", "its reaction time", DEFAULT_REACTION_TIME, zero=True
+        ),
     )
+
+
+def _mount(node: SpecNode) -> Pose3D:
+    mount = node.mapping(("xyz", "rpy"), what="mount pose fields")
+    for key in ("xyz", "rpy"):
+        if key not in mount:
+            raise node.missing(key, f"write `{key}: [0.0, 0.0, 0.0]`")
+    return Pose3D(xyz=mount["xyz"].triple("m"), rpy=mount["rpy"].triple("rad"))
+
+
+def _positive(node: SpecNode, unit: str, what: str, *, zero: bool = False) -> float:
+    value = node.number(unit)
+    if value < 0 or (value == 0 and not zero):
+        raise node.error(f"{node.value} {unit} cannot be {what}", f"write {what} in {unit}")
+    return value
+
+
+def _optional(
+    fields: dict[str, SpecNode],
+    key: str,
+    unit: str,
+    what: str,
+    default: float,
+    *,
+    zero: bool = False,
+) -> float:
+    return _positive(fields[key], unit, what, zero=zero) if key in fields else default
+
+
+def _footprint(node: SpecNode) -> tuple[tuple[float, float], ...]:
+    """A convex polygon around the base origin, as costmap_2d's `footprint` parameter."""
+    example = (
+        "write the corners as ROS does, "
+        "e.g. [[-0.5, -0.33], [-0.5, 0.33], [0.5, 0.33], [0.5, -0.33]]"
+    )
+    points = [point.vector(2, "m") for point in node.items(what="footprint corners [x, y]")]
+    if len(points) < 3:
+        raise node.error(f"{len(points)} corners enclose no area", example)
+    turns = [_cross(points[i - 2], points[i - 1], points[i]) for i in range(len(points))]
+    if not (all(turn > 0 for turn in turns) or all(turn < 0 for turn in turns)):
+        raise node.error("the corners do not form a convex polygon", example)
+    ordered = points if turns[0] > 0 else points[::-1]
+    if any(_cross(ordered[i - 1], ordered[i], (0.0, 0.0)) <= 0 for i in range(len(ordered))):
+        raise node.error("the polygon does not contain the robot's origin", example)
+    return tuple((x, y) for x, y in ordered)
+
+
+def _cross(a: tuple[float, ...], b: tuple[float, ...], c: tuple[float, ...]) -> float:
+    return (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0])
 
 
 def resolve_robot(node: SpecNode) -> Path:

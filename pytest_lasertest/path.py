@@ -1,0 +1,187 @@
+"""The nominal path: the obstacle-free run from the start pose through the route to the goal.
+
+The robot turns in place toward each waypoint at its nominal turn rate, then drives straight to it
+at its nominal speed. Time runs from 0 at the start pose; scanners scan at k / update_rate.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from pytest_lasertest.geometry import FloatArray, Point2D, Pose2D
+
+# While turning in place the footprint sweeps (part of) a disc; the gate takes the regular polygon
+# around that disc with this many sides, so that every swept region is a convex polygon.
+TURN_POLYGON_SIDES = 16
+# A turn smaller than this is no turn: waypoints straight ahead do not stop the robot.
+MIN_TURN = 1e-9  # rad
+
+
+@dataclass(frozen=True)
+class Leg:
+    """Driving straight from one waypoint to the next."""
+
+    start: Point2D
+    heading: float  # rad
+    length: float  # m
+    begins: float  # s, when the robot sets off
+
+    def point_at(self, distance: float) -> tuple[float, float]:
+        """Where the robot's origin is after `distance` m along this leg."""
+        return (
+            self.start.x + distance * math.cos(self.heading),
+            self.start.y + distance * math.sin(self.heading),
+        )
+
+
+@dataclass(frozen=True)
+class Turn:
+    """Turning in place at a waypoint."""
+
+    at: Point2D
+    from_heading: float  # rad
+    angle: float  # rad, counter-clockwise positive
+    begins: float  # s
+
+
+@dataclass(frozen=True)
+class NominalPath:
+    """Legs and turns in time order, at the robot's nominal speed and turn rate."""
+
+    start: Pose2D
+    segments: tuple[Leg | Turn, ...]
+    speed: float  # m/s
+    turn_rate: float  # rad/s
+
+    @property
+    def duration(self) -> float:
+        """Time from the start pose to the goal (s)."""
+        return self.end_of(self.segments[-1]) if self.segments else 0.0
+
+    def polyline(self) -> list[tuple[float, float]]:
+        """The path's corners, from the start to the goal (m)."""
+        points = [(self.start.x, self.start.y)]
+        points += [leg.point_at(leg.length) for leg in self.legs()]
+        return points
+
+    def legs(self) -> list[Leg]:
+        """The straight parts, in order."""
+        return [segment for segment in self.segments if isinstance(segment, Leg)]
+
+    def poses_at(self, times: FloatArray) -> FloatArray:
+        """Robot poses [x, y, yaw] at `times`, shape (T,) s -> (T, 3); held at the goal after."""
+        start = np.array([self.start.x, self.start.y, self.start.yaw], dtype=float)
+        poses = np.tile(start, (len(times), 1))
+        for segment in self.segments:
+            inside = times >= segment.begins
+            elapsed = np.minimum(
+                times[inside] - segment.begins, self.end_of(segment) - segment.begins
+            )
+            if isinstance(segment, Leg):
+                distance = elapsed * self.speed
+                poses[inside, 0] = segment.start.x + distance * math.cos(segment.heading)
+                poses[inside, 1] = segment.start.y + distance * math.sin(segment.heading)
+                poses[inside, 2] = segment.heading
+            else:
+                turned = np.sign(segment.angle) * elapsed * self.turn_rate
+                poses[inside, 0], poses[inside, 1] = segment.at.x, segment.at.y
+                poses[inside, 2] = segment.from_heading + turned
+        return poses
+
+    def segment_at(self, time: float) -> Leg | Turn | None:
+        """The leg or turn the robot is on at `time`; None after the goal."""
+        for segment in self.segments:
+            if segment.begins <= time < self.end_of(segment):
+                return segment
+        return None
+
+    def end_of(self, segment: Leg | Turn) -> float:
+        """When the robot finishes this leg or turn (s)."""
+        if isinstance(segment, Leg):
+            return segment.begins + segment.length / self.speed
+        return segment.begins + abs(segment.angle) / self.turn_rate
+
+
+def nominal_path(
+    start: Pose2D, route: tuple[Point2D, ...], speed: float, turn_rate: float
+) -> NominalPath:
+    """The path that turns toward each waypoint of `route` in turn and drives straight to it."""
+    segments: list[Leg | Turn] = []
+    here, heading, clock = Point2D(start.x, start.y), start.yaw, 0.0
+    for waypoint in route:
+        bearing = math.atan2(waypoint.y - here.y, waypoint.x - here.x)
+        angle = (bearing - heading + math.pi) % (2.0 * math.pi) - math.pi
+        if abs(angle) > MIN_TURN:
+            segments.append(Turn(here, heading, angle, clock))
+            clock += abs(angle) / turn_rate
+        length = math.dist((here.x, here.y), (waypoint.x, waypoint.y))
+        segments.append(Leg(here, bearing, length, clock))
+        clock += length / speed
+        here, heading = waypoint, bearing
+    return NominalPath(start, tuple(segments), speed, turn_rate)
+
+
+def scan_times(rate: float, until: float) -> FloatArray:
+    """A scanner's scan instants k / rate from 0 up to and including `until`, shape (K,), s."""
+    count = math.floor(until * rate + 1e-9) + 1
+    return np.arange(count) / rate
+
+
+def swept_polygons(
+    path: NominalPath, footprint: FloatArray, begin: float, end: float
+) -> list[FloatArray]:
+    """Convex polygons, each shape (V, 2), whose union holds every footprint of [begin, end] s.
+
+    A straight stretch sweeps the convex hull of its first and last footprints; a turn in place is
+    taken to sweep the regular polygon around the disc its footprint turns in.
+    """
+    radius = float(np.max(np.hypot(footprint[:, 0], footprint[:, 1])))
+    pieces: list[FloatArray] = []
+    for segment in path.segments:
+        first, last = max(begin, segment.begins), min(end, path.end_of(segment))
+        if first > last or (first == last and segment.begins != first):
+            continue
+        if isinstance(segment, Turn):
+            pieces.append(_turn_polygon(segment.at, radius))
+            continue
+        ends = path.poses_at(np.array([first, last]))
+        pieces.append(_hull(np.vstack([place(footprint, pose) for pose in ends])))
+    return pieces
+
+
+def place(footprint: FloatArray, pose: FloatArray) -> FloatArray:
+    """A base-frame polygon, shape (V, 2), placed at pose [x, y, yaw] in the world."""
+    cos, sin = math.cos(pose[2]), math.sin(pose[2])
+    rotation = np.array([[cos, -sin], [sin, cos]])
+    placed: FloatArray = footprint @ rotation.T + pose[:2]
+    return placed
+
+
+def _turn_polygon(centre: Point2D, radius: float) -> FloatArray:
+    sides = TURN_POLYGON_SIDES
+    # The polygon's vertices lie further out than the disc so that its edges touch the circle.
+    corner = radius / math.cos(math.pi / sides)
+    angles = (np.arange(sides) + 0.5) * 2.0 * math.pi / sides
+    return np.column_stack([centre.x + corner * np.cos(angles), centre.y + corner * np.sin(angles)])
+
+
+def _hull(points: FloatArray) -> FloatArray:
+    """Convex hull, counter-clockwise, shape (V, 2) (Andrew's monotone chain)."""
+    ordered = sorted({(float(x), float(y)) for x, y in points})
+    if len(ordered) < 3:
+        return np.array(ordered)
+    lower: list[tuple[float, float]] = []
+    upper: list[tuple[float, float]] = []
+    for chain, sequence in ((lower, ordered), (upper, ordered[::-1])):
+        for point in sequence:
+            while len(chain) >= 2 and _turn(chain[-2], chain[-1], point) <= 0:
+                chain.pop()
+            chain.append(point)
+    return np.array(lower[:-1] + upper[:-1])
+
+
+def _turn(a: tuple[float, float], b: tuple[float, float], c: tuple[float, float]) -> float:
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])

@@ -1,0 +1,208 @@
+"""The search for witnesses: anchors on the nominal path, one Z3 query each, refined by ray casts.
+
+For one direction of a pair, the detector's scan instants along the nominal path are anchors. At
+each, a query asks for an obstacle the detector's scan reads while the misser's scans miss it,
+clear of the robot until it could stand, and in its way after. The exact ray cast judges each
+model; a misser scan that still sees the obstacle becomes one more constraint (refinement), so
+the model converges on a placement that every misser scan up to the anchor misses.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from pytest_lasertest.geometry import Box, Cylinder, FloatArray, Obstacle
+from pytest_lasertest.path import Leg, scan_times, swept_polygons
+from pytest_lasertest.placement import (
+    REQUIRED_MARGIN,
+    Direction,
+    Placement,
+    Scene,
+    Verification,
+    verify,
+)
+from pytest_lasertest.solver.backend import RLIMIT, Solution, solve
+from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of, number
+from pytest_lasertest.solver.scans import Region, detected, missed, promising_beams
+from pytest_lasertest.solver.user import formula_text
+from pytest_lasertest.spec.constraints import Constraint
+
+# The solver aims a little above the required margin so that rounding to floats cannot undo it.
+TARGET_MARGIN = REQUIRED_MARGIN + 1e-4  # m
+MAX_MARGIN = 0.02  # m, beyond this a larger margin buys nothing
+MAX_REFINEMENTS = 12
+MIN_HEIGHT = 0.05  # m
+BEAM_LIMIT = 12
+
+
+class WitnessRejected(AssertionError):
+    """The solver's model failed a check the encoding promised: a bug in the gate, never noise."""
+
+
+@dataclass(frozen=True)
+class SearchSettings:
+    """How hard and how widely to look for witnesses."""
+
+    witnesses: int = 3  # per direction
+    min_size: float = 0.05  # m
+    max_size: float = 1.0  # m
+    max_height: float = 2.0  # m
+    anchor_spacing: float = 0.5  # m of path between anchors
+    diversity: float = 0.5  # m, how far apart two witnesses' centres are
+    rlimit: int = RLIMIT
+    constraints: tuple[Constraint, ...] = field(default=())
+
+
+@dataclass(frozen=True)
+class Found:
+    """A verified witness of one query."""
+
+    placement: Placement
+    verification: Verification
+
+
+@dataclass(frozen=True)
+class Query:
+    """One anchor and obstacle shape of one direction."""
+
+    scene: Scene
+    direction: Direction
+    anchor: float  # s
+    shape: ObstacleShape
+    settings: SearchSettings
+    apart_from: tuple[Obstacle, ...] = ()
+    # How many of the detector's most promising beams the query offers Z3; None: every beam, so
+    # that an unsat answer proves that no placement discriminates at this anchor.
+    beam_limit: int | None = BEAM_LIMIT
+
+    def run(self) -> Found | Solution:
+        """A verified witness, or Z3's unsat / unknown answer."""
+        misser = self.scene.misser(self.direction)
+        times = scan_times(misser.update_rate, self.anchor)
+        refined = sorted({float(times[0]), float(times[-1])})
+        for _ in range(MAX_REFINEMENTS):
+            # A proof over every beam only decides; searches maximise the margin, then prefer
+            # the thinnest obstacle, the hardest to see.
+            goals = ("M", "-S") if self.beam_limit is not None else ()
+            solution = solve(VARIABLES, self.blocks(refined), goals, self.settings.rlimit)
+            if solution.verdict != "sat":
+                return solution
+            placement = Placement(self.obstacle(solution), self.direction, self.anchor)
+            verification = verify(self.scene, placement)
+            if verification.holds():
+                return Found(placement, verification)
+            refined = self._refine(refined, verification, placement)
+        return Solution("unknown", {}, reason=f"{MAX_REFINEMENTS} refinements did not converge")
+
+    def blocks(self, misser_times: Sequence[float]) -> dict[str, str]:
+        """The labelled SMT-LIB formulas of this query."""
+        scene, shape, path = self.scene, self.shape, self.scene.path
+        stands = scene.standstill(self.anchor)
+        footprint = scene.robot.footprint_array()
+        after = swept_polygons(path, footprint, stands, path.duration)
+        region = self._region(after)
+        poses = path.poses_at(np.array([self.anchor, *misser_times]))
+        blocks = {
+            "bounds": self._bounds(),
+            "robot": all_of(
+                [shape.clear_of_polygon(p) for p in swept_polygons(path, footprint, 0.0, stands)]
+            ),
+            "path": any_of([shape.inside_polygon(piece) for piece in after]),
+        }
+        misser, detector = scene.misser(self.direction), scene.detector(self.direction)
+        beams = None
+        if self.beam_limit is not None:
+            beams = promising_beams(
+                detector, misser, poses[[0, -1]], region, self.settings.min_size, self.beam_limit
+            )
+        blocks["detector"] = detected(shape, detector, poses[0], region, beams)
+        for time, pose in zip(misser_times, poses[1:], strict=True):
+            blocks[f"misser@{time:.3f}"] = missed(
+                shape, misser, pose, region, self.settings.min_size
+            )
+        for index, constraint in enumerate(self.settings.constraints):
+            blocks[f"constraint {index}"] = formula_text(constraint.formula, self.shape.yaw)
+        for index, other in enumerate(self.apart_from):
+            blocks[f"apart {index}"] = self._apart(other)
+        return blocks
+
+    def obstacle(self, solution: Solution) -> Obstacle:
+        """The obstacle of a model."""
+        x, y = solution.values["X"], solution.values["Y"]
+        size, height = solution.values["S"], solution.values["H"]
+        if self.shape.shape == "cylinder":
+            return Cylinder(x, y, size / 2.0, height)
+        return Box(x, y, self.shape.yaw, size, size, height)
+
+    def _bounds(self) -> str:
+        settings = self.settings
+        return all_of(
+            [
+                f"(>= S {number(settings.min_size)})",
+                f"(<= S {number(settings.max_size)})",
+                f"(>= H {number(MIN_HEIGHT)})",
+                f"(<= H {number(settings.max_height)})",
+                f"(>= M {number(TARGET_MARGIN)})",
+                f"(<= M {number(MAX_MARGIN)})",
+                # Shrunk by M, the obstacle must still be an obstacle.
+                f"(>= (- (* 0.5 S) M) {number(REQUIRED_MARGIN)})",
+            ]
+        )
+
+    def _region(self, pieces: list[FloatArray]) -> Region:
+        reach = self.settings.max_size * (math.sqrt(0.5) if self.shape.shape == "box" else 0.5)
+        if not pieces:
+            return Region((0.0, 0.0), (0.0, 0.0))
+        points = np.vstack(pieces)
+        low, high = points.min(axis=0) - reach, points.max(axis=0) + reach
+        return Region((float(low[0]), float(low[1])), (float(high[0]), float(high[1])))
+
+    def _apart(self, other: Obstacle) -> str:
+        gap = self.settings.diversity
+        return any_of(
+            [
+                f"(>= X {number(other.x + gap)})",
+                f"(<= X {number(other.x - gap)})",
+                f"(>= Y {number(other.y + gap)})",
+                f"(<= Y {number(other.y - gap)})",
+            ]
+        )
+
+    def _refine(
+        self, refined: list[float], verification: Verification, placement: Placement
+    ) -> list[float]:
+        promised = min(verification.detection, verification.clearance, verification.obstruction)
+        late = [t for t in verification.seen_by_misser_at if t not in refined]
+        if promised < REQUIRED_MARGIN or not late:
+            raise WitnessRejected(
+                f"the solver placed {placement.obstacle} for {placement.direction} at "
+                f"t = {placement.anchor} s, but the ray cast finds margins {verification}"
+            )
+        picks = {late[0], late[len(late) // 2], late[-1]}
+        return sorted({*refined, *picks})
+
+
+def anchor_times(scene: Scene, direction: Direction, spacing: float) -> list[float]:
+    """Detector scan instants on legs, with room to brake on the leg, `spacing` m apart."""
+    path = scene.path
+    times = scan_times(scene.detector(direction).update_rate, path.duration)
+    anchors: list[float] = []
+    for time in times:
+        segment = path.segment_at(float(time))
+        if not isinstance(segment, Leg) or scene.standstill(float(time)) > path.end_of(segment):
+            continue
+        if anchors and (time - anchors[-1]) * path.speed < spacing - 1e-9:
+            continue
+        anchors.append(float(time))
+    return anchors
+
+
+def shapes_for(index: int, heading: float) -> Iterator[ObstacleShape]:
+    """The shapes a witness search tries, varied by witness index: boxes turned in eighths."""
+    box = ObstacleShape("box", (heading + (index // 2) * math.pi / 8.0) % (math.pi / 2.0))
+    cylinder = ObstacleShape("cylinder")
+    yield from (box, cylinder) if index % 2 == 0 else (cylinder, box)
