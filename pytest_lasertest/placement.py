@@ -119,8 +119,8 @@ def hit_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) ->
     if profile.range_min > 0:
         before = _clearances(origins, directions, 0.0, profile.range_min, obstacle)
         margins = np.minimum(margins, before.reshape(shape))
-    height: FloatArray = np.minimum(margins, obstacle.height - profile.scan_height)
-    return height
+    above_plane: FloatArray = np.minimum(margins, obstacle.height - profile.scan_height)
+    return above_plane
 
 
 def miss_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:

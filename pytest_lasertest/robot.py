@@ -28,11 +28,6 @@ class Robot:
         speed = self.nominal_speed
         return speed * self.reaction_time + speed**2 / (2.0 * self.max_linear_acceleration)
 
-    @property
-    def turning_radius(self) -> float:
-        """Radius of the disc the footprint sweeps when turning in place (m)."""
-        return float(np.max(np.hypot(*self.footprint_array().T)))
-
     def footprint_array(self) -> FloatArray:
         """The footprint's vertices, shape (V, 2), m."""
         return np.array(self.footprint, dtype=float)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -50,7 +51,7 @@ def test_the_five_metre_scanner_misses_an_obstacle_the_ten_metre_one_reads_at_th
 
 def test_a_narrower_field_of_view_hides_nothing_in_the_way_ahead_at_the_start_pose() -> None:
     query = Query(scene("blind_spot"), "candidate-misses", 0.0, ObstacleShape("cylinder"), SETTINGS)
-    answer = Query(**{**query.__dict__, "beam_limit": None}).run()
+    answer = dataclasses.replace(query, beam_limit=None).run()
     assert not isinstance(answer, Found)
     assert answer.verdict == "unsat"
     assert {"detector", "path", "misser@0.000"} <= set(answer.core)

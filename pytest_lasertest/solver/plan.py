@@ -53,15 +53,20 @@ def _at_anchor(
     witnesses: list[Witness],
     answers: list[Solution],
 ) -> Witness | None:
-    pose = scene.path.poses_at(np.array([anchor]))[0]
+    pose = _pose(scene, anchor)
     apart = tuple(witness.placement.obstacle for witness in witnesses)
-    for shape in shapes_for(index, float(pose[2])):
+    for shape in shapes_for(index, pose[2]):
         result = Query(scene, direction, anchor, shape, settings, apart).run()
         if isinstance(result, Found):
-            x, y, yaw = (float(value) for value in pose)
-            return Witness(index, result.placement, result.verification, (x, y, yaw))
+            return Witness(index, result.placement, result.verification, pose)
         answers.append(result)
     return None
+
+
+def _pose(scene: Scene, time: float) -> tuple[float, float, float]:
+    """The robot's pose [x, y, yaw] on the nominal path at `time`."""
+    x, y, yaw = (float(value) for value in scene.path.poses_at(np.array([time]))[0])
+    return x, y, yaw
 
 
 def _without_witness(
@@ -76,20 +81,19 @@ def _without_witness(
             direction, "unsat", (), "the path leaves no room to brake before the goal"
         )
     # The searches offered Z3 a few promising beams; a proof needs every beam of the scan.
+    pose = _pose(scene, anchors[0])
     proofs = [
         Query(scene, direction, anchors[0], shape, settings, beam_limit=None).run()
-        for shape in shapes_for(0, float(scene.path.poses_at(np.array([anchors[0]]))[0, 2]))
+        for shape in shapes_for(0, pose[2])
     ]
     for proof in proofs:
         if isinstance(proof, Found):
-            x, y, yaw = (float(v) for v in scene.path.poses_at(np.array([anchors[0]]))[0])
-            witness = Witness(0, proof.placement, proof.verification, (x, y, yaw))
+            witness = Witness(0, proof.placement, proof.verification, pose)
             return DirectionPlan(direction, "sat", (witness,), "")
     solutions = [proof for proof in proofs if isinstance(proof, Solution)]
-    status: Status = "unknown" if any(s.verdict == "unknown" for s in solutions) else "unsat"
+    undecided = any(answer.verdict == "unknown" for answer in [*solutions, *answers])
+    status: Status = "unknown" if undecided else "unsat"
     searched = f"; no witness at the other {len(anchors) - 1} anchors searched along the path"
-    if any(answer.verdict == "unknown" for answer in answers):
-        status = "unknown"
     return DirectionPlan(
         direction, status, (), explain(scene, direction, settings, solutions) + searched
     )

@@ -84,11 +84,15 @@ class Query:
         misser = self.scene.misser(self.direction)
         times = scan_times(misser.update_rate, self.anchor)
         refined = sorted({float(times[0]), float(times[-1])})
+        region = self.region()
+        # Only the misser's scans change between refinements; the rest is built once.
+        scene_blocks, user_blocks = self.scene_blocks(region), self.user_blocks()
+        # A proof over every beam only decides; searches maximise the margin, then prefer the
+        # thinnest obstacle, the hardest to see.
+        goals = ("M", "-S") if self.beam_limit is not None else ()
         for _ in range(MAX_REFINEMENTS):
-            # A proof over every beam only decides; searches maximise the margin, then prefer
-            # the thinnest obstacle, the hardest to see.
-            goals = ("M", "-S") if self.beam_limit is not None else ()
-            solution = solve(VARIABLES, self.blocks(refined), goals, self.settings.rlimit)
+            blocks = {**scene_blocks, **self.misser_blocks(refined, region), **user_blocks}
+            solution = solve(VARIABLES, blocks, goals, self.settings.rlimit)
             if solution.verdict != "sat":
                 return solution
             placement = Placement(self.obstacle(solution), self.direction, self.anchor)
@@ -98,37 +102,45 @@ class Query:
             refined = self._refine(refined, verification, placement)
         return Solution("unknown", {}, reason=f"{MAX_REFINEMENTS} refinements did not converge")
 
-    def blocks(self, misser_times: Sequence[float]) -> dict[str, str]:
-        """The labelled SMT-LIB formulas of this query."""
-        scene, shape, path = self.scene, self.shape, self.scene.path
+    def region(self) -> Region:
+        """A box holding every obstacle that reaches into the path after the robot could stop."""
+        reach = self.settings.max_size * (math.sqrt(0.5) if self.shape.shape == "box" else 0.5)
+        pieces = self._swept_after()
+        if not pieces:
+            return Region((0.0, 0.0), (0.0, 0.0))
+        points = np.vstack(pieces)
+        low, high = points.min(axis=0) - reach, points.max(axis=0) + reach
+        return Region((float(low[0]), float(low[1])), (float(high[0]), float(high[1])))
+
+    def scene_blocks(self, region: Region) -> dict[str, str]:
+        """Size bounds, the robot's path, and the detector's scan at the anchor."""
+        scene, shape = self.scene, self.shape
         stands = scene.standstill(self.anchor)
-        footprint = scene.robot.footprint_array()
-        after = swept_polygons(path, footprint, stands, path.duration)
-        region = self._region(after)
-        poses = path.poses_at(np.array([self.anchor, *misser_times]))
-        blocks = {
+        before = swept_polygons(scene.path, scene.robot.footprint_array(), 0.0, stands)
+        return {
             "bounds": self._bounds(),
-            "robot": all_of(
-                [shape.clear_of_polygon(p) for p in swept_polygons(path, footprint, 0.0, stands)]
-            ),
-            "path": any_of([shape.inside_polygon(piece) for piece in after]),
+            "robot": all_of([shape.clear_of_polygon(piece) for piece in before]),
+            "path": any_of([shape.inside_polygon(piece) for piece in self._swept_after()]),
+            "detector": self._detector(region),
         }
-        misser, detector = scene.misser(self.direction), scene.detector(self.direction)
-        beams = None
-        if self.beam_limit is not None:
-            beams = promising_beams(
-                detector, misser, poses[[0, -1]], region, self.settings.min_size, self.beam_limit
-            )
-        blocks["detector"] = detected(shape, detector, poses[0], region, beams)
-        for time, pose in zip(misser_times, poses[1:], strict=True):
-            blocks[f"misser@{time:.3f}"] = missed(
-                shape, misser, pose, region, self.settings.min_size
-            )
+
+    def user_blocks(self) -> dict[str, str]:
+        """The user's constraints, and distance from the witnesses found before."""
+        blocks = {}
         for index, constraint in enumerate(self.settings.constraints):
             blocks[f"constraint {index}"] = formula_text(constraint.formula, self.shape.yaw)
         for index, other in enumerate(self.apart_from):
             blocks[f"apart {index}"] = self._apart(other)
         return blocks
+
+    def misser_blocks(self, misser_times: Sequence[float], region: Region) -> dict[str, str]:
+        """One formula per misser scan that must miss the obstacle."""
+        misser = self.scene.misser(self.direction)
+        poses = self.scene.path.poses_at(np.array(misser_times))
+        return {
+            f"misser@{time:.3f}": missed(self.shape, misser, pose, region, self.settings.min_size)
+            for time, pose in zip(misser_times, poses, strict=True)
+        }
 
     def obstacle(self, solution: Solution) -> Obstacle:
         """The obstacle of a model."""
@@ -153,13 +165,22 @@ class Query:
             ]
         )
 
-    def _region(self, pieces: list[FloatArray]) -> Region:
-        reach = self.settings.max_size * (math.sqrt(0.5) if self.shape.shape == "box" else 0.5)
-        if not pieces:
-            return Region((0.0, 0.0), (0.0, 0.0))
-        points = np.vstack(pieces)
-        low, high = points.min(axis=0) - reach, points.max(axis=0) + reach
-        return Region((float(low[0]), float(low[1])), (float(high[0]), float(high[1])))
+    def _swept_after(self) -> list[FloatArray]:
+        path = self.scene.path
+        stands = self.scene.standstill(self.anchor)
+        return swept_polygons(path, self.scene.robot.footprint_array(), stands, path.duration)
+
+    def _detector(self, region: Region) -> str:
+        scene = self.scene
+        detector, misser = scene.detector(self.direction), scene.misser(self.direction)
+        last_miss = scan_times(misser.update_rate, self.anchor)[-1]
+        poses = scene.path.poses_at(np.array([self.anchor, last_miss]))
+        beams = None
+        if self.beam_limit is not None:
+            beams = promising_beams(
+                detector, misser, poses, region, self.settings.min_size, self.beam_limit
+            )
+        return detected(self.shape, detector, poses[0], region, beams)
 
     def _apart(self, other: Obstacle) -> str:
         gap = self.settings.diversity
