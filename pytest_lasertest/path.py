@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from pytest_lasertest.geometry import FloatArray, Point2D, Pose2D
 
@@ -91,6 +92,11 @@ class NominalPath:
                 poses[inside, 2] = segment.from_heading + turned
         return poses
 
+    def travelled(self, time: float) -> float:
+        """How far the robot has driven at `time` (m)."""
+        legs = self.legs()
+        return sum(min(max(time - leg.begins, 0.0) * self.speed, leg.length) for leg in legs)
+
     def segment_at(self, time: float) -> Leg | Turn | None:
         """The leg or turn the robot is on at `time`; None after the goal."""
         for segment in self.segments:
@@ -150,6 +156,55 @@ def swept_polygons(
         ends = path.poses_at(np.array([first, last]))
         pieces.append(_hull(np.vstack([place(footprint, pose) for pose in ends])))
     return pieces
+
+
+def contact_times(path: NominalPath, footprint: FloatArray, points: FloatArray) -> FloatArray:
+    """When the footprint first covers each point, shape (P, 2) -> (P,) s; inf if never.
+
+    As `swept_polygons` has it: a leg covers a point once the footprint's front edge at the
+    point's lateral offset reaches it, a turn covers its whole disc from the moment it begins.
+    """
+    times = np.full(len(points), np.inf)
+    radius = float(np.max(np.hypot(footprint[:, 0], footprint[:, 1])))
+    for segment in path.segments:
+        if isinstance(segment, Turn):
+            inside = _inside(_turn_polygon(segment.at, radius), points)
+            times = np.where(inside, np.minimum(times, segment.begins), times)
+            continue
+        heading = np.array([math.cos(segment.heading), math.sin(segment.heading)])
+        offsets = points - [segment.start.x, segment.start.y]
+        along, lateral = offsets @ heading, offsets @ [-heading[1], heading[0]]
+        back, front = _chord(footprint, lateral)
+        reached = np.maximum(along - front, 0.0)
+        covered = (reached <= np.minimum(segment.length, along - back)) & (back <= front)
+        arrival = segment.begins + reached / path.speed
+        times = np.where(covered, np.minimum(times, arrival), times)
+    return times
+
+
+def _chord(polygon: FloatArray, lateral: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Where the line y = lateral, shape (P,), crosses a convex base-frame polygon: x from, to.
+
+    An empty chord comes back as from > to.
+    """
+    here, there = polygon, np.roll(polygon, -1, axis=0)
+    rise = there[:, 1] - here[:, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        share = (lateral[:, np.newaxis] - here[:, 1]) / rise
+    crosses = (rise != 0) & (share >= 0.0) & (share <= 1.0)
+    xs = here[:, 0] + share * (there[:, 0] - here[:, 0])
+    back = np.where(crosses, xs, np.inf).min(axis=1)
+    front = np.where(crosses, xs, -np.inf).max(axis=1)
+    return back, front
+
+
+def _inside(polygon: FloatArray, points: FloatArray) -> npt.NDArray[np.bool_]:
+    """Whether each point, shape (P, 2), lies in a counter-clockwise convex polygon (V, 2)."""
+    edges = np.roll(polygon, -1, axis=0) - polygon
+    relative = points[:, np.newaxis, :] - polygon[np.newaxis, :, :]
+    cross = edges[:, 0] * relative[..., 1] - edges[:, 1] * relative[..., 0]
+    result: npt.NDArray[np.bool_] = np.all(cross >= 0.0, axis=1)
+    return result
 
 
 def place(footprint: FloatArray, pose: FloatArray) -> FloatArray:

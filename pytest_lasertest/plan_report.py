@@ -2,7 +2,8 @@
 
 The JSON is a stable contract (documented in the README):
 `{"pairs": [{"name", "status", "explanation", "baseline", "candidate", "start", "goal", "path",
-"witnesses": [{"id", "direction", "obstacle", "pose", "detected_by", "margin"}]}]}`.
+"witnesses": [{"id", "direction", "obstacle", "pose", "detected_by", "margin", "lead",
+"late"}]}]}`.
 """
 
 from __future__ import annotations
@@ -66,6 +67,8 @@ def witness_json(witness: Witness) -> dict[str, object]:
         "pose": list(witness.pose),
         "detected_by": DETECTED_BY[witness.placement.direction],
         "margin": witness.verification.margin,
+        "lead": witness.verification.lead,
+        "late": witness.verification.late,
     }
 
 
@@ -90,11 +93,20 @@ def plan_text(plan: PairPlan) -> str:
                 f"    {witness.id}: {_describe(witness.placement.obstacle)}; "
                 f"read by the {DETECTED_BY[direction.direction]} from ({x:.2f}, {y:.2f}, "
                 f"{yaw:.2f}) at t = {witness.placement.anchor:.2f} s; "
-                f"margin {witness.verification.margin * 1000:.1f} mm"
+                f"margin {witness.verification.margin * 1000:.1f} mm; {_lead(witness)}"
             )
         if direction.explanation:
             lines.append(f"    {direction.explanation}")
     return "\n".join(lines)
+
+
+def _lead(witness: Witness) -> str:
+    """How long the difference lasts on the approach."""
+    lead = witness.verification.lead
+    misser = "candidate" if witness.placement.direction == "candidate-misses" else "baseline"
+    if witness.verification.late:
+        return f"the {misser} misses it for {lead:.2f} m, until too late to stop"
+    return f"the {misser} misses it for {lead:.2f} m more"
 
 
 def _describe(obstacle: Obstacle) -> str:

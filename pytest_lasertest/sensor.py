@@ -115,16 +115,18 @@ class LaserProfile:
 
         Returns origins and unit directions, each shape (T, N, 2), m.
         """
+        angles = poses[:, 2:3] + self.beam_angles_in_base()[np.newaxis, :]
+        directions = np.stack([np.cos(angles), np.sin(angles)], axis=-1)
+        origins = np.broadcast_to(self.origins(poses)[:, np.newaxis, :], directions.shape)
+        return origins, directions
+
+    def origins(self, poses: FloatArray) -> FloatArray:
+        """Where the scanner is in the world at robot poses [x, y, yaw], shape (T, 3) -> (T, 2)."""
         mount_x, mount_y, _ = self.pose.xyz
         cos, sin = np.cos(poses[:, 2]), np.sin(poses[:, 2])
         origin_x = poses[:, 0] + cos * mount_x - sin * mount_y
         origin_y = poses[:, 1] + sin * mount_x + cos * mount_y
-        angles = poses[:, 2:3] + self.beam_angles_in_base()[np.newaxis, :]
-        directions = np.stack([np.cos(angles), np.sin(angles)], axis=-1)
-        origins = np.broadcast_to(
-            np.stack([origin_x, origin_y], axis=-1)[:, np.newaxis, :], directions.shape
-        )
-        return origins, directions
+        return np.stack([origin_x, origin_y], axis=-1)
 
     def sector_in_base(self) -> tuple[float, float]:
         """The directions the beams span in the base frame: (start, extent), rad, counter-clockwise.
@@ -160,6 +162,22 @@ class LaserProfile:
             range_min=self.range_min,
             range_max=self.range_max,
         )
+
+
+def same_geometry(first: LaserProfile, second: LaserProfile) -> bool:
+    """Whether two scanners cast the same beams from the same place at the same instants.
+
+    Such scanners read any obstacle alike (noise aside), so no placement tells them apart.
+    """
+    if first.beam_count != second.beam_count:
+        return False
+    figures = [(p.range_min, p.range_max, p.update_rate, p.pose.xyz) for p in (first, second)]
+    pose = np.zeros((1, 3))
+    first_rays, second_rays = first.rays(pose), second.rays(pose)
+    return figures[0] == figures[1] and all(
+        np.allclose(a, b, rtol=0.0, atol=1e-12)
+        for a, b in zip(first_rays, second_rays, strict=True)
+    )
 
 
 def _directions_in_base(pose: Pose3D, angles: FloatArray) -> FloatArray:

@@ -52,6 +52,18 @@ def any_of(parts: list[str]) -> str:
 
 
 @dataclass(frozen=True)
+class HalfPlane:
+    """Where the obstacle, grown by the margin M, must lie: normal . p >= offset (m)."""
+
+    normal: tuple[float, float]
+    offset: float
+
+    def room(self, point: FloatArray) -> float:
+        """How far inside the half-plane `point` lies (m); negative outside."""
+        return self.normal[0] * float(point[0]) + self.normal[1] * float(point[1]) - self.offset
+
+
+@dataclass(frozen=True)
 class ObstacleShape:
     """The fixed part of a query's obstacle: its shape and yaw."""
 
@@ -81,6 +93,32 @@ class ObstacleShape:
         """The obstacle, grown by M (grow=1) or shrunk by M (grow=-1), lies where n . p <= value."""
         k = self.spread(axis)
         return f"(<= {linear(X=axis[0], Y=axis[1], S=k / 2, M=grow * k)} {number(value)})"
+
+    def beyond(self, plane: HalfPlane) -> str:
+        """The obstacle, grown by M, lies where plane.normal . p >= plane.offset."""
+        return self.at_least(np.array(plane.normal), plane.offset)
+
+    def holds(self, point: FloatArray) -> str:
+        """The obstacle, shrunk by M, holds the point (a cylinder: its inscribed octagon does)."""
+        if self.shape == "box":
+            return all_of(
+                [
+                    self.overlaps(axis, float(axis @ point), float(axis @ point))
+                    for axis in self.axes()
+                ]
+            )
+        shrink = math.cos(math.pi / 8.0)
+        parts = []
+        for angle in np.arange(4) * math.pi / 4.0:
+            axis = np.array([math.cos(angle), math.sin(angle)])
+            along = float(axis @ point)
+            parts.append(
+                f"(<= {linear(X=axis[0], Y=axis[1], S=-shrink / 2, M=shrink)} {number(along)})"
+            )
+            parts.append(
+                f"(>= {linear(X=axis[0], Y=axis[1], S=shrink / 2, M=-shrink)} {number(along)})"
+            )
+        return all_of(parts)
 
     def overlaps(self, axis: FloatArray, low: float, high: float) -> str:
         """The obstacle, shrunk by M, overlaps [low, high] along `axis`."""

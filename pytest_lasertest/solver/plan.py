@@ -11,127 +11,111 @@ from pytest_lasertest.placement import (
     DirectionPlan,
     PairPlan,
     Scene,
-    Status,
     Witness,
 )
-from pytest_lasertest.solver.backend import Solution
-from pytest_lasertest.solver.search import Found, Query, SearchSettings, anchor_times, shapes_for
+from pytest_lasertest.sensor import same_geometry
+from pytest_lasertest.solver.encoding import ObstacleShape
+from pytest_lasertest.solver.proof import prove
+from pytest_lasertest.solver.search import (
+    Found,
+    Query,
+    SearchSettings,
+    anchor_times,
+    needed_room,
+    shapes_for,
+)
+from pytest_lasertest.solver.seeds import Seed, seeds
 from pytest_lasertest.spec.pairs import Pair, PairsFile
 
-SIDE = {"candidate-misses": ("baseline", "candidate"), "baseline-misses": ("candidate", "baseline")}
+SEEDS_PER_ANCHOR = 3  # seeds tried per anchor and shape before the search moves on
+
+
+class DirectionSearch:
+    """The witnesses of one direction, found anchor by anchor; seeds are computed once each."""
+
+    def __init__(self, scene: Scene, direction: Direction, settings: SearchSettings) -> None:
+        self.scene = scene
+        self.direction = direction
+        self.settings = settings
+        self.witnesses: list[Witness] = []
+        self._seeds: dict[tuple[float, float], list[Seed]] = {}
+
+    def run(self) -> DirectionPlan:
+        """Up to `settings.witnesses` witnesses, each from the next anchor that yields one."""
+        scene, direction = self.scene, self.direction
+        if same_geometry(scene.detector(direction), scene.misser(direction)):
+            return DirectionPlan(direction, "unsat", (), SAME)
+        anchors = anchor_times(scene, direction, self.settings.anchor_spacing)
+        if not anchors:
+            return DirectionPlan(direction, "unsat", (), "the path leaves no room to brake")
+        cursor = 0
+        for index in range(self.settings.witnesses):
+            for step in range(len(anchors)):
+                anchor = anchors[(cursor + step) % len(anchors)]
+                found = self._at_anchor(anchor, index)
+                if found is not None:
+                    self.witnesses.append(found)
+                    cursor = (cursor + step + 1) % len(anchors)
+                    break
+            else:
+                break
+        if self.witnesses:
+            missing = self.settings.witnesses - len(self.witnesses)
+            note = f"only {len(self.witnesses)} diverse witnesses found" if missing else ""
+            return DirectionPlan(direction, "sat", tuple(self.witnesses), note)
+        return self._without_witness(anchors)
+
+    def _at_anchor(self, anchor: float, index: int) -> Witness | None:
+        pose = self.scene.path.poses_at(np.array([anchor]))[0]
+        apart = tuple(witness.placement.obstacle for witness in self.witnesses)
+        for shape in shapes_for(index, float(pose[2])):
+            for seed in self._fresh_seeds(anchor, shape)[:SEEDS_PER_ANCHOR]:
+                query = Query(self.scene, self.direction, anchor, seed, shape, self.settings, apart)
+                result = query.run()
+                if isinstance(result, Found):
+                    x, y, yaw = (float(value) for value in pose)
+                    return Witness(index, result.placement, result.verification, (x, y, yaw))
+        return None
+
+    def _fresh_seeds(self, anchor: float, shape: ObstacleShape) -> list[Seed]:
+        """The anchor's seeds for this shape, without those near a witness already found."""
+        needed = needed_room(shape, self.settings)
+        key = (anchor, needed)
+        if key not in self._seeds:
+            self._seeds[key] = seeds(self.scene, self.direction, anchor, needed)
+        gap = self.settings.diversity
+        taken = [witness.placement.obstacle for witness in self.witnesses]
+        return [
+            seed
+            for seed in self._seeds[key]
+            if all(
+                max(abs(seed.point[0] - other.x), abs(seed.point[1] - other.y)) >= gap
+                for other in taken
+            )
+        ]
+
+    def _without_witness(self, anchors: list[float]) -> DirectionPlan:
+        heading = float(self.scene.path.poses_at(np.array([anchors[0]]))[0, 2])
+        shapes = tuple(shapes_for(0, heading))
+        proof = prove(self.scene, self.direction, anchors[0], self.settings, shapes)
+        if proof.witness is not None:
+            return DirectionPlan(self.direction, "sat", (proof.witness,), "")
+        others = len(anchors) - 1
+        searched = (
+            f"; no witness found at the other {others} anchors along the path" if others else ""
+        )
+        return DirectionPlan(self.direction, proof.verdict, (), proof.explanation + searched)  # type: ignore[arg-type]
+
+
+SAME = (
+    "the two scanners cast the same beams from the same place at the same instants, so every "
+    "obstacle one reads the other reads too"
+)
 
 
 def plan_direction(scene: Scene, direction: Direction, settings: SearchSettings) -> DirectionPlan:
-    """Up to `settings.witnesses` witnesses, each from the next anchor that yields one."""
-    anchors = anchor_times(scene, direction, settings.anchor_spacing)
-    witnesses: list[Witness] = []
-    answers: list[Solution] = []
-    cursor = 0
-    for index in range(settings.witnesses):
-        for step in range(len(anchors)):
-            anchor = anchors[(cursor + step) % len(anchors)]
-            found = _at_anchor(scene, direction, anchor, index, settings, witnesses, answers)
-            if found is not None:
-                witnesses.append(found)
-                cursor = (cursor + step + 1) % len(anchors)
-                break
-        else:
-            break
-    if witnesses:
-        missing = settings.witnesses - len(witnesses)
-        note = f"only {len(witnesses)} diverse witnesses found" if missing else ""
-        return DirectionPlan(direction, "sat", tuple(witnesses), note)
-    return _without_witness(scene, direction, settings, anchors, answers)
-
-
-def _at_anchor(
-    scene: Scene,
-    direction: Direction,
-    anchor: float,
-    index: int,
-    settings: SearchSettings,
-    witnesses: list[Witness],
-    answers: list[Solution],
-) -> Witness | None:
-    pose = _pose(scene, anchor)
-    apart = tuple(witness.placement.obstacle for witness in witnesses)
-    for shape in shapes_for(index, pose[2]):
-        result = Query(scene, direction, anchor, shape, settings, apart).run()
-        if isinstance(result, Found):
-            return Witness(index, result.placement, result.verification, pose)
-        answers.append(result)
-    return None
-
-
-def _pose(scene: Scene, time: float) -> tuple[float, float, float]:
-    """The robot's pose [x, y, yaw] on the nominal path at `time`."""
-    x, y, yaw = (float(value) for value in scene.path.poses_at(np.array([time]))[0])
-    return x, y, yaw
-
-
-def _without_witness(
-    scene: Scene,
-    direction: Direction,
-    settings: SearchSettings,
-    anchors: list[float],
-    answers: list[Solution],
-) -> DirectionPlan:
-    if not anchors:
-        return DirectionPlan(
-            direction, "unsat", (), "the path leaves no room to brake before the goal"
-        )
-    # The searches offered Z3 a few promising beams; a proof needs every beam of the scan.
-    pose = _pose(scene, anchors[0])
-    proofs = [
-        Query(scene, direction, anchors[0], shape, settings, beam_limit=None).run()
-        for shape in shapes_for(0, pose[2])
-    ]
-    for proof in proofs:
-        if isinstance(proof, Found):
-            witness = Witness(0, proof.placement, proof.verification, pose)
-            return DirectionPlan(direction, "sat", (witness,), "")
-    solutions = [proof for proof in proofs if isinstance(proof, Solution)]
-    undecided = any(answer.verdict == "unknown" for answer in [*solutions, *answers])
-    status: Status = "unknown" if undecided else "unsat"
-    searched = f"; no witness at the other {len(anchors) - 1} anchors searched along the path"
-    return DirectionPlan(
-        direction, status, (), explain(scene, direction, settings, solutions) + searched
-    )
-
-
-def explain(
-    scene: Scene, direction: Direction, settings: SearchSettings, solutions: list[Solution]
-) -> str:
-    """Why no placement discriminates at the start pose, from the unsat cores, in words."""
-    unknown = [s.reason for s in solutions if s.verdict == "unknown"]
-    if unknown:
-        return f"Z3 could not decide at the start pose ({unknown[0]})"
-    detector_side, misser_side = SIDE[direction]
-    labels = sorted({label for solution in solutions for label in solution.core})
-    reasons = [_reason(label, scene, direction, settings) for label in labels]
-    return (
-        f"no obstacle discriminates at the start pose: the {detector_side} cannot read one "
-        f"that the {misser_side} misses under these conditions together: "
-        + "; ".join(reason for reason in reasons if reason)
-    )
-
-
-def _reason(label: str, scene: Scene, direction: Direction, settings: SearchSettings) -> str:
-    detector_side, misser_side = SIDE[direction]
-    if label == "bounds":
-        return f"obstacle size {settings.min_size:g}-{settings.max_size:g} m"
-    if label == "robot":
-        return f"clear of the robot until it stands ({scene.robot.braking_distance:.2f} m braking)"
-    if label == "path":
-        return "in the robot's way after it could stop"
-    if label == "detector":
-        return f"read by the {detector_side} ({scene.detector(direction).describe()})"
-    if label.startswith("misser@"):
-        return f"missed by the {misser_side} ({scene.misser(direction).describe()})"
-    if label.startswith("constraint "):
-        constraint = settings.constraints[int(label.split()[1])]
-        return f"your constraint {constraint.text!r} ({constraint.location})"
-    return ""
+    """The witnesses of one direction, or why there are none."""
+    return DirectionSearch(scene, direction, settings).run()
 
 
 def plan_pair(spec: PairsFile, pair: Pair) -> PairPlan:

@@ -1,11 +1,12 @@
 """What one scan sees of the obstacle, as linear constraints: the per-beam slab and gap forms.
 
-`detected`: some beam of the scan passes inside the obstacle, in range (a disjunction over the
-beams that can reach the region where the obstacle must lie). `missed`: the obstacle is lower
-than the scan plane, or lies wholly outside the field of view, or beyond range along one of a
-fan of tangent directions, or inside one gap between neighbouring beams (the gap form: evenly
-spaced beams make "between beam j and j+1" two half-planes). Each is sound: a model of it
-passes the exact ray cast, with the margin M.
+These are the whole disjunctions, which proofs need; searches split them by a seed point
+(`seeds.py`). `detected`: some beam of the scan passes inside the obstacle, in range (a
+disjunction over the beams that can reach the region where the obstacle must lie). `miss_ways`:
+the obstacle is lower than the scan plane, or lies wholly outside the field of view, or beyond
+range along one of a fan of tangent directions, or inside the minimum-range circle, or inside one
+gap between neighbouring beams (the gap form: evenly spaced beams make "between beam j and j+1"
+two half-planes). Each is sound: a model of it passes the exact ray cast, with the margin M.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from pytest_lasertest.solver.encoding import ObstacleShape, all_of, any_of, line
 # Beyond range is "outside a circle", which is not linear; tangent half-planes stand in for it,
 # spaced so that none of them gives away more than this much of the range.
 RANGE_SLACK = 0.001  # m
-SAMPLE_STEP = 0.02  # m, along beams when ranking them
+NEAR_SIDES = 16  # sides of the polygons standing in for range circles
 
 BoolArray = npt.NDArray[np.bool_]
 IndexArray = npt.NDArray[np.intp]
@@ -70,71 +71,68 @@ def detected(
     return all_of([above, any_of(options)])
 
 
-def promising_beams(
-    detector: LaserProfile,
-    misser: LaserProfile,
-    poses: FloatArray,
-    region: Region,
-    min_size: float,
-    limit: int,
-) -> IndexArray:
-    """The detector's beams likeliest to see what the misser cannot, best first, shape (<= limit,).
-
-    Poses [x, y, yaw], shape (2, 3): the detector's at the anchor, the misser's last before it.
-    A heuristic that only orders the search: points every SAMPLE_STEP along each beam inside the
-    region count when the misser's nearest beam would pass more than min_size / 2 from them, or
-    they lie outside its field of view or range.
-    """
-    origins, directions = detector.rays(poses[:1])
-    origin, steps = origins[0, 0], np.arange(detector.range_min, detector.range_max, SAMPLE_STEP)
-    points = origin + steps[np.newaxis, :, np.newaxis] * directions[0][:, np.newaxis, :]
-    low, high = np.array(region.low), np.array(region.high)
-    inside = np.all((points >= low) & (points <= high), axis=-1)
-    hidden = inside & ~_covers(misser, poses[1], points, min_size)
-    if detector.scan_height < misser.scan_height:
-        hidden = inside
-    score = hidden.sum(axis=1)
-    order = np.lexsort((np.arange(len(score)), -score))
-    best: IndexArray = order[score[order] > 0][:limit]
-    return best
-
-
-def _covers(
-    profile: LaserProfile, pose: FloatArray, points: FloatArray, min_size: float
-) -> BoolArray:
-    """Whether the scan at `pose` surely crosses a min_size obstacle at each point (..., 2)."""
-    origins, _ = profile.rays(pose[np.newaxis, :])
-    offset = points - origins[0, 0]
-    distance = np.hypot(offset[..., 0], offset[..., 1])
-    start, extent = profile.sector_in_base()
-    bearing = (np.arctan2(offset[..., 1], offset[..., 0]) - pose[2] - start) % FULL_TURN
-    spacing = profile.angle_increment
-    nearest = np.clip(np.round(bearing / spacing), 0, profile.beam_count - 1) if spacing else 0.0
-    lateral = distance * np.abs(np.sin(bearing - nearest * spacing))
-    in_view = (
-        (bearing <= extent) & (distance >= profile.range_min) & (distance <= profile.range_max)
-    )
-    result: BoolArray = in_view & (lateral < min_size / 2.0)
-    return result
-
-
-def missed(
+def miss_ways(
     shape: ObstacleShape, profile: LaserProfile, pose: FloatArray, region: Region, min_size: float
-) -> str:
-    """Every beam of the scan at robot pose [x, y, yaw] passes clear of the obstacle by M."""
+) -> dict[str, list[str]]:
+    """The ways every beam of the scan at robot pose [x, y, yaw] passes clear of the obstacle by
+    M, each a list of alternatives; a way that cannot happen in the region has none."""
     origins, _ = profile.rays(pose[np.newaxis, :])
     origin = origins[0, 0]
     start, extent = profile.sector_in_base()
     start += float(pose[2])
-    below = f"(<= {linear(H=1.0, M=1.0)} {number(profile.scan_height)})"
-    return any_of(
-        [
-            below,
-            *_outside(shape, origin, start, extent),
-            *_beyond(shape, origin, start, extent, profile.range_max, region),
-            *_gaps(shape, origin, profile, start, region, min_size),
+    return {
+        "below": [f"(<= {linear(H=1.0, M=1.0)} {number(profile.scan_height)})"],
+        "outside": _outside(shape, origin, start, extent),
+        "beyond": _beyond(shape, origin, start, extent, profile.range_max, region),
+        "near": _near(shape, origin, profile.range_min),
+        "between": _gaps(shape, origin, profile, start, region, min_size),
+    }
+
+
+def reaches(shape: ObstacleShape, profile: LaserProfile, pose: FloatArray) -> str:
+    """A point (QX, QY) of the obstacle shrunk by M lies in the scan's sector, within its range,
+    and the obstacle stands above the scan plane.
+
+    Every reading implies this, so a proof may use it in place of the disjunction over beams: a
+    relaxation, convex but for sectors wider than half a turn, whose edges it leaves out.
+    """
+    origins, _ = profile.rays(pose[np.newaxis, :])
+    origin = origins[0, 0]
+    parts = [f"(>= {linear(H=1.0, M=-1.0)} {number(profile.scan_height)})"]
+    for axis in shape.axes() or list(_fan(4, math.pi)):
+        parts += [
+            f"(<= {linear(QX=axis[0], QY=axis[1], X=-axis[0], Y=-axis[1], S=-0.5, M=1.0)} 0.0)",
+            f"(>= {linear(QX=axis[0], QY=axis[1], X=-axis[0], Y=-axis[1], S=0.5, M=-1.0)} 0.0)",
         ]
-    )
+    for axis in _fan(NEAR_SIDES, FULL_TURN):
+        reach = float(origin @ axis) + profile.range_max
+        parts.append(f"(<= {linear(QX=axis[0], QY=axis[1])} {number(reach)})")
+    start, extent = profile.sector_in_base()
+    if extent < math.pi:
+        first, last = _normal(start + float(pose[2])), _normal(start + extent + float(pose[2]))
+        parts.append(f"(>= {linear(QX=first[0], QY=first[1])} {number(float(origin @ first))})")
+        parts.append(f"(<= {linear(QX=last[0], QY=last[1])} {number(float(origin @ last))})")
+    return all_of(parts)
+
+
+def _fan(count: int, turn: float) -> list[FloatArray]:
+    angles = np.arange(count) * turn / count
+    return [np.array([math.cos(angle), math.sin(angle)]) for angle in angles]
+
+
+def _near(shape: ObstacleShape, origin: FloatArray, range_min: float) -> list[str]:
+    """Inside the polygon inscribed in the minimum-range circle: every beam meets it too near."""
+    if range_min <= 0:
+        return []
+    apothem = range_min * math.cos(math.pi / NEAR_SIDES)
+    return [
+        all_of(
+            [
+                shape.at_most(axis, float(origin @ axis) + apothem)
+                for axis in _fan(NEAR_SIDES, FULL_TURN)
+            ]
+        )
+    ]
 
 
 def _outside(shape: ObstacleShape, origin: FloatArray, start: float, extent: float) -> list[str]:

@@ -23,11 +23,19 @@ from pytest_lasertest.placement import (
     Placement,
     Scene,
     Verification,
+    last_chance,
     verify,
 )
 from pytest_lasertest.solver.backend import RLIMIT, Solution, solve
-from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of, number
-from pytest_lasertest.solver.scans import Region, detected, missed, promising_beams
+from pytest_lasertest.solver.encoding import (
+    VARIABLES,
+    HalfPlane,
+    ObstacleShape,
+    all_of,
+    linear,
+    number,
+)
+from pytest_lasertest.solver.seeds import Seed, misses
 from pytest_lasertest.solver.user import formula_text
 from pytest_lasertest.spec.constraints import Constraint
 
@@ -36,7 +44,6 @@ TARGET_MARGIN = REQUIRED_MARGIN + 1e-4  # m
 MAX_MARGIN = 0.02  # m, beyond this a larger margin buys nothing
 MAX_REFINEMENTS = 12
 MIN_HEIGHT = 0.05  # m
-BEAM_LIMIT = 12
 
 
 class WitnessRejected(AssertionError):
@@ -67,144 +74,153 @@ class Found:
 
 @dataclass(frozen=True)
 class Query:
-    """One anchor and obstacle shape of one direction."""
+    """One seed of one anchor, and one obstacle shape: a linear program, refined by ray casts."""
 
     scene: Scene
     direction: Direction
     anchor: float  # s
+    seed: Seed
     shape: ObstacleShape
     settings: SearchSettings
     apart_from: tuple[Obstacle, ...] = ()
-    # How many of the detector's most promising beams the query offers Z3; None: every beam, so
-    # that an unsat answer proves that no placement discriminates at this anchor.
-    beam_limit: int | None = BEAM_LIMIT
 
     def run(self) -> Found | Solution:
         """A verified witness, or Z3's unsat / unknown answer."""
-        misser = self.scene.misser(self.direction)
-        times = scan_times(misser.update_rate, self.anchor)
-        refined = sorted({float(times[0]), float(times[-1])})
-        region = self.region()
-        # Only the misser's scans change between refinements; the rest is built once.
-        scene_blocks, user_blocks = self.scene_blocks(region), self.user_blocks()
-        # A proof over every beam only decides; searches maximise the margin, then prefer the
-        # thinnest obstacle, the hardest to see.
-        goals = ("M", "-S") if self.beam_limit is not None else ()
+        times = list(self.seed.tight)
+        fixed = {**self.scene_blocks(), **self.user_blocks()}
         for _ in range(MAX_REFINEMENTS):
-            blocks = {**scene_blocks, **self.misser_blocks(refined, region), **user_blocks}
-            solution = solve(VARIABLES, blocks, goals, self.settings.rlimit)
+            blocks = {**fixed, **self.misser_blocks(times)}
+            solution = solve(VARIABLES, blocks, ("M", "-S"), self.settings.rlimit)
             if solution.verdict != "sat":
                 return solution
-            placement = Placement(self.obstacle(solution), self.direction, self.anchor)
+            obstacle = obstacle_of(self.shape, solution)
+            until = min(self.seed.until, last_chance(self.scene, obstacle))
+            placement = Placement(obstacle, self.direction, self.anchor, max(until, self.anchor))
             verification = verify(self.scene, placement)
             if verification.holds():
                 return Found(placement, verification)
-            refined = self._refine(refined, verification, placement)
+            times = self._refine(times, verification, placement)
         return Solution("unknown", {}, reason=f"{MAX_REFINEMENTS} refinements did not converge")
 
-    def region(self) -> Region:
-        """A box holding every obstacle that reaches into the path after the robot could stop."""
-        reach = self.settings.max_size * (math.sqrt(0.5) if self.shape.shape == "box" else 0.5)
-        pieces = self._swept_after()
-        if not pieces:
-            return Region((0.0, 0.0), (0.0, 0.0))
-        points = np.vstack(pieces)
-        low, high = points.min(axis=0) - reach, points.max(axis=0) + reach
-        return Region((float(low[0]), float(low[1])), (float(high[0]), float(high[1])))
-
-    def scene_blocks(self, region: Region) -> dict[str, str]:
-        """Size bounds, the robot's path, and the detector's scan at the anchor."""
-        scene, shape = self.scene, self.shape
+    def scene_blocks(self) -> dict[str, str]:
+        """Size bounds, the detector's reading through the seed, and the robot's room to stop."""
+        scene, shape, point = self.scene, self.shape, np.array(self.seed.point)
         stands = scene.standstill(self.anchor)
         before = swept_polygons(scene.path, scene.robot.footprint_array(), 0.0, stands)
         return {
-            "bounds": self._bounds(),
-            "robot": all_of([shape.clear_of_polygon(piece) for piece in before]),
-            "path": any_of([shape.inside_polygon(piece) for piece in self._swept_after()]),
-            "detector": self._detector(region),
+            "bounds": bounds(self.settings),
+            "detector": all_of([shape.holds(point), *self._reading()]),
+            "robot": all_of([shape.beyond(_separating(piece, point, shape)) for piece in before]),
         }
 
     def user_blocks(self) -> dict[str, str]:
         """The user's constraints, and distance from the witnesses found before."""
-        blocks = {}
-        for index, constraint in enumerate(self.settings.constraints):
-            blocks[f"constraint {index}"] = formula_text(constraint.formula, self.shape.yaw)
+        blocks = constraint_blocks(self.settings, self.shape)
         for index, other in enumerate(self.apart_from):
             blocks[f"apart {index}"] = self._apart(other)
         return blocks
 
-    def misser_blocks(self, misser_times: Sequence[float], region: Region) -> dict[str, str]:
-        """One formula per misser scan that must miss the obstacle."""
-        misser = self.scene.misser(self.direction)
-        poses = self.scene.path.poses_at(np.array(misser_times))
+    def misser_blocks(self, times: Sequence[float]) -> dict[str, str]:
+        """One formula per misser scan that must miss the obstacle: the seed's way of missing."""
+        scene, direction = self.scene, self.direction
+        misser = scene.misser(direction)
+        if misser.scan_height > scene.detector(direction).scan_height:
+            return {"misser": f"(<= {linear(H=1.0, M=1.0)} {number(misser.scan_height)})"}
+        cases = misses(scene, direction, np.array(times), np.array(self.seed.point))
         return {
-            f"misser@{time:.3f}": missed(self.shape, misser, pose, region, self.settings.min_size)
-            for time, pose in zip(misser_times, poses, strict=True)
+            f"misser@{time:.3f}": all_of([self.shape.beyond(plane) for plane in case])
+            for time, case in zip(times, cases, strict=True)
         }
 
-    def obstacle(self, solution: Solution) -> Obstacle:
-        """The obstacle of a model."""
-        x, y = solution.values["X"], solution.values["Y"]
-        size, height = solution.values["S"], solution.values["H"]
-        if self.shape.shape == "cylinder":
-            return Cylinder(x, y, size / 2.0, height)
-        return Box(x, y, self.shape.yaw, size, size, height)
-
-    def _bounds(self) -> str:
-        settings = self.settings
-        return all_of(
-            [
-                f"(>= S {number(settings.min_size)})",
-                f"(<= S {number(settings.max_size)})",
-                f"(>= H {number(MIN_HEIGHT)})",
-                f"(<= H {number(settings.max_height)})",
-                f"(>= M {number(TARGET_MARGIN)})",
-                f"(<= M {number(MAX_MARGIN)})",
-                # Shrunk by M, the obstacle must still be an obstacle.
-                f"(>= (- (* 0.5 S) M) {number(REQUIRED_MARGIN)})",
-            ]
-        )
-
-    def _swept_after(self) -> list[FloatArray]:
-        path = self.scene.path
-        stands = self.scene.standstill(self.anchor)
-        return swept_polygons(path, self.scene.robot.footprint_array(), stands, path.duration)
-
-    def _detector(self, region: Region) -> str:
-        scene = self.scene
-        detector, misser = scene.detector(self.direction), scene.misser(self.direction)
-        last_miss = scan_times(misser.update_rate, self.anchor)[-1]
-        poses = scene.path.poses_at(np.array([self.anchor, last_miss]))
-        beams = None
-        if self.beam_limit is not None:
-            beams = promising_beams(
-                detector, misser, poses, region, self.settings.min_size, self.beam_limit
-            )
-        return detected(self.shape, detector, poses[0], region, beams)
+    def _reading(self) -> list[str]:
+        """Above the detector's scan plane, and wholly beyond its minimum range along the beam."""
+        detector = self.scene.detector(self.direction)
+        above = f"(>= {linear(H=1.0, M=-1.0)} {number(detector.scan_height)})"
+        if detector.range_min <= 0:
+            return [above]
+        origins, _ = detector.rays(self.scene.path.poses_at(np.array([self.anchor])))
+        origin = origins[0, 0]
+        axis = (np.array(self.seed.point) - origin) / math.dist(self.seed.point, origin)
+        return [above, self.shape.at_least(axis, float(origin @ axis) + detector.range_min)]
 
     def _apart(self, other: Obstacle) -> str:
-        gap = self.settings.diversity
-        return any_of(
-            [
-                f"(>= X {number(other.x + gap)})",
-                f"(<= X {number(other.x - gap)})",
-                f"(>= Y {number(other.y + gap)})",
-                f"(<= Y {number(other.y - gap)})",
-            ]
-        )
+        """At least `diversity` m from another witness along x or y, on the seed's side."""
+        gap, (x, y) = self.settings.diversity, self.seed.point
+        options = [
+            (x - (other.x + gap), f"(>= X {number(other.x + gap)})"),
+            ((other.x - gap) - x, f"(<= X {number(other.x - gap)})"),
+            (y - (other.y + gap), f"(>= Y {number(other.y + gap)})"),
+            ((other.y - gap) - y, f"(<= Y {number(other.y - gap)})"),
+        ]
+        return max(options)[1]
 
     def _refine(
-        self, refined: list[float], verification: Verification, placement: Placement
+        self, times: list[float], verification: Verification, placement: Placement
     ) -> list[float]:
         promised = min(verification.detection, verification.clearance, verification.obstruction)
-        late = [t for t in verification.seen_by_misser_at if t not in refined]
+        late = [t for t in verification.seen_by_misser_at if t not in times]
         if promised < REQUIRED_MARGIN or not late:
             raise WitnessRejected(
                 f"the solver placed {placement.obstacle} for {placement.direction} at "
                 f"t = {placement.anchor} s, but the ray cast finds margins {verification}"
             )
         picks = {late[0], late[len(late) // 2], late[-1]}
-        return sorted({*refined, *picks})
+        return sorted({*times, *picks})
+
+
+def obstacle_of(shape: ObstacleShape, solution: Solution) -> Obstacle:
+    """The obstacle of a model."""
+    x, y = solution.values["X"], solution.values["Y"]
+    size, height = solution.values["S"], solution.values["H"]
+    if shape.shape == "cylinder":
+        return Cylinder(x, y, size / 2.0, height)
+    return Box(x, y, shape.yaw, size, size, height)
+
+
+def constraint_blocks(settings: SearchSettings, shape: ObstacleShape) -> dict[str, str]:
+    """The user's constraints, one labelled block each."""
+    return {
+        f"constraint {index}": formula_text(constraint.formula, shape.yaw)
+        for index, constraint in enumerate(settings.constraints)
+    }
+
+
+def bounds(settings: SearchSettings) -> str:
+    """The obstacle's size and height, and the margin the solver aims for."""
+    return all_of(
+        [
+            f"(>= S {number(settings.min_size)})",
+            f"(<= S {number(settings.max_size)})",
+            f"(>= H {number(MIN_HEIGHT)})",
+            f"(<= H {number(settings.max_height)})",
+            f"(>= M {number(TARGET_MARGIN)})",
+            f"(<= M {number(MAX_MARGIN)})",
+            # Shrunk by M, the obstacle must still be an obstacle.
+            f"(>= (- (* 0.5 S) M) {number(REQUIRED_MARGIN)})",
+        ]
+    )
+
+
+def needed_room(shape: ObstacleShape, settings: SearchSettings) -> float:
+    """How much room around a seed the smallest obstacle of this shape needs, with its margin (m)."""
+    spread = 1.0 if shape.shape == "cylinder" else math.sqrt(2.0)
+    return spread * (settings.min_size / 2.0 + TARGET_MARGIN)
+
+
+def _separating(piece: FloatArray, point: FloatArray, shape: ObstacleShape) -> HalfPlane:
+    """Of the axes that can separate the obstacle from a convex piece, the one with most room."""
+    options = []
+    edges = np.roll(piece, -1, axis=0) - piece
+    for edge, corner in zip(edges, piece, strict=True):
+        length = float(np.hypot(*edge))
+        if length > 0.0:
+            normal = np.array([edge[1], -edge[0]]) / length
+            options.append(HalfPlane((float(normal[0]), float(normal[1])), float(normal @ corner)))
+    for axis in shape.axes():
+        projection = piece @ axis
+        options.append(HalfPlane((float(axis[0]), float(axis[1])), float(projection.max())))
+        options.append(HalfPlane((float(-axis[0]), float(-axis[1])), float(-projection.min())))
+    return max(options, key=lambda plane: plane.room(point) / shape.spread(np.array(plane.normal)))
 
 
 def anchor_times(scene: Scene, direction: Direction, spacing: float) -> list[float]:

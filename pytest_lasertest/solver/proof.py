@@ -1,0 +1,174 @@
+"""Proofs that no placement discriminates at an anchor, one way of missing at a time, in words.
+
+A misser scan misses an obstacle only in a few ways (`scans.miss_ways`). No placement exists
+exactly when each way, joined to the rest of the question, is unsatisfiable, so a proof is one
+query per way and shape, and its explanation says for each way what rules it out: the unsat core
+in words. A cheap relaxation of the detector's reading is tried first; only a way it cannot rule
+out meets the disjunction over every beam.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from pytest_lasertest.path import scan_times, swept_polygons
+from pytest_lasertest.placement import Direction, Placement, Scene, Witness, verify
+from pytest_lasertest.solver.backend import Solution, solve
+from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of
+from pytest_lasertest.solver.scans import Region, detected, miss_ways, reaches
+from pytest_lasertest.solver.search import (
+    SearchSettings,
+    bounds,
+    constraint_blocks,
+    obstacle_of,
+)
+
+SIDE = {"candidate-misses": ("baseline", "candidate"), "baseline-misses": ("candidate", "baseline")}
+PROOF_VARIABLES = (*VARIABLES, "QX", "QY")
+
+
+@dataclass(frozen=True)
+class Proof:
+    """Z3's verdict on one anchor: unsat with the reasons, unknown, or a witness it found."""
+
+    verdict: str  # "unsat", "unknown" or "sat"
+    explanation: str
+    witness: Witness | None = None
+
+
+@dataclass(frozen=True)
+class Question:
+    """Everything but the misser's scan, for one anchor and obstacle shape."""
+
+    scene: Scene
+    direction: Direction
+    anchor: float  # s
+    shape: ObstacleShape
+    settings: SearchSettings
+
+    def blocks(self, relaxed: bool) -> dict[str, str]:
+        """Labelled SMT-LIB blocks: bounds, the robot's room to stop, its way, the reading."""
+        scene, shape = self.scene, self.shape
+        footprint, stands = scene.robot.footprint_array(), scene.standstill(self.anchor)
+        before = swept_polygons(scene.path, footprint, 0.0, stands)
+        after = swept_polygons(scene.path, footprint, stands, scene.path.duration)
+        detector, pose = scene.detector(self.direction), self.pose()
+        reading = reaches(shape, detector, pose) if relaxed else None
+        return {
+            "bounds": bounds(self.settings),
+            "robot": all_of([shape.clear_of_polygon(piece) for piece in before]),
+            "path": any_of([shape.inside_polygon(piece) for piece in after]),
+            "detector": reading or detected(shape, detector, pose, self.region()),
+            **constraint_blocks(self.settings, shape),
+        }
+
+    def pose(self) -> np.ndarray:
+        """The robot at the anchor, [x, y, yaw]."""
+        poses: np.ndarray = self.scene.path.poses_at(np.array([self.anchor]))[0]
+        return poses
+
+    def region(self) -> Region:
+        """A box holding every obstacle that reaches into the robot's way after it could stop."""
+        scene = self.scene
+        footprint, stands = scene.robot.footprint_array(), scene.standstill(self.anchor)
+        points = np.vstack(swept_polygons(scene.path, footprint, stands, scene.path.duration))
+        reach = self.settings.max_size * (math.sqrt(0.5) if self.shape.shape == "box" else 0.5)
+        low, high = points.min(axis=0) - reach, points.max(axis=0) + reach
+        return Region((float(low[0]), float(low[1])), (float(high[0]), float(high[1])))
+
+
+def prove(
+    scene: Scene,
+    direction: Direction,
+    anchor: float,
+    settings: SearchSettings,
+    shapes: tuple[ObstacleShape, ...],
+) -> Proof:
+    """Whether any placement of these shapes discriminates at the anchor, with the reasons."""
+    misser = scene.misser(direction)
+    last_scan = float(scan_times(misser.update_rate, anchor)[-1])
+    reasons: dict[str, str] = {}
+    for shape in shapes:
+        question = Question(scene, direction, anchor, shape, settings)
+        pose = scene.path.poses_at(np.array([last_scan]))[0]
+        ways = miss_ways(shape, misser, pose, question.region(), settings.min_size)
+        for way, options in ways.items():
+            outcome = _rule_out(question, way, options)
+            if isinstance(outcome, Witness):
+                return Proof("sat", "", outcome)
+            if outcome.verdict == "unknown":
+                return Proof(
+                    "unknown", f"Z3 could not decide at t = {anchor:.2f} s ({outcome.reason})"
+                )
+            reasons.setdefault(way, _why(scene, direction, settings, way, outcome))
+    return Proof("unsat", _sentence(scene, direction, anchor, reasons))
+
+
+def _rule_out(question: Question, way: str, options: list[str]) -> Solution | Witness:
+    if not options:
+        return Solution("unsat", {}, ("misser",))
+    solution = Solution("unknown", {})
+    for relaxed in (True, False):
+        blocks = {**question.blocks(relaxed), "misser": any_of(options)}
+        variables = PROOF_VARIABLES if relaxed else VARIABLES
+        solution = solve(variables, blocks, (), question.settings.rlimit)
+        if solution.verdict != "sat":
+            return solution
+    obstacle = obstacle_of(question.shape, solution)
+    placement = Placement(obstacle, question.direction, question.anchor, question.anchor)
+    verification = verify(question.scene, placement)
+    if not verification.holds():
+        return Solution("unknown", {}, reason=f"a model of the {way} case failed the ray cast")
+    x, y, yaw = (float(value) for value in question.pose())
+    return Witness(0, placement, verification, (x, y, yaw))
+
+
+def _why(
+    scene: Scene, direction: Direction, settings: SearchSettings, way: str, solution: Solution
+) -> str:
+    detector_side, _ = SIDE[direction]
+    detector = scene.detector(direction)
+    others = [label for label in solution.core if label != "misser"]
+    if not others:
+        return {
+            "below": f"the {detector_side}'s scan plane ({detector.scan_height:.3f} m) is no lower",
+            "outside": "it sees all round",
+            "beyond": "the robot's way lies within it",
+            "near": "it has none",
+            "between": f"nothing {settings.min_size:g} m wide fits between them where the robot "
+            "could meet it",
+        }[way]
+    words = {
+        "bounds": f"the obstacle's size ({settings.min_size:g}-{settings.max_size:g} m)",
+        "robot": f"room for the robot to stop ({scene.robot.braking_distance:.2f} m)",
+        "path": "being in the robot's way",
+        "detector": f"being read by the {detector_side} ({detector.describe()})",
+    }
+    named = [words[label] if label in words else _constraint(settings, label) for label in others]
+    return "ruled out by " + " and ".join(named)
+
+
+def _constraint(settings: SearchSettings, label: str) -> str:
+    constraint = settings.constraints[int(label.split()[1])]
+    return f"your constraint {constraint.text!r} ({constraint.location})"
+
+
+def _sentence(scene: Scene, direction: Direction, anchor: float, reasons: dict[str, str]) -> str:
+    detector_side, misser_side = SIDE[direction]
+    misser = scene.misser(direction)
+    phrases = {
+        "below": f"lower than its scan plane ({misser.scan_height:.3f} m)",
+        "outside": f"outside its field of view ({misser.min_angle:g} to {misser.max_angle:g} rad)",
+        "beyond": f"beyond its range ({misser.range_max:g} m)",
+        "near": f"nearer than its minimum range ({misser.range_min:g} m)",
+        "between": f"between two of its beams ({math.degrees(misser.angle_increment):.3f} deg apart)",
+    }
+    where = "at the start pose" if anchor == 0.0 else f"at t = {anchor:.2f} s"
+    return (
+        f"no obstacle discriminates {where}: the {misser_side} misses what the {detector_side} "
+        "reads only when it is "
+        + "; ".join(f"{phrases[way]}: {why}" for way, why in reasons.items())
+    )
