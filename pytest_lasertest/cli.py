@@ -1,5 +1,5 @@
-"""The `lasertest` command: `plan` finds placements, `catalogue` lists scanner models, `doctor`
-checks the installation."""
+"""The `lasertest` command: `plan` finds placements, `explain` shows which beams read one of them,
+`catalogue` lists scanner models, `doctor` checks the installation."""
 
 from __future__ import annotations
 
@@ -39,6 +39,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     plan = commands.add_parser("plan", help="find the placements that tell each pair apart")
     plan.add_argument("pairs_file", type=Path, metavar="PAIRS.yaml")
     plan.add_argument("--json", action="store_true", help="print the JSON contract")
+    explain = commands.add_parser("explain", help="show which beams read one witness's obstacle")
+    explain.add_argument("pairs_file", type=Path, metavar="PAIRS.yaml")
+    explain.add_argument("pair", metavar="PAIR", help="a pair's name in the pairs file")
+    explain.add_argument("witness", metavar="WITNESS", help="an id `lasertest plan` prints")
+    explain.add_argument("--json", action="store_true", help="print JSON instead of text")
     catalogue = commands.add_parser("catalogue", help="list the scanner models `model:` can name")
     catalogue.add_argument("--json", action="store_true", help="print JSON instead of a table")
     commands.add_parser("doctor", help="check the installation and say what to fix")
@@ -46,6 +51,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.command == "plan":
             return print_plan(args.pairs_file, as_json=args.json)
+        if args.command == "explain":
+            return print_explain(args.pairs_file, args.pair, args.witness, as_json=args.json)
         if args.command == "catalogue":
             return print_catalogue(as_json=args.json)
         return run_doctor()
@@ -120,6 +127,40 @@ def print_plan(path: Path, *, as_json: bool) -> int:
     else:
         print("\n".join(plan_text(plan) for plan in plans))
     return 0
+
+
+def print_explain(path: Path, pair_name: str, witness_id: str, *, as_json: bool) -> int:
+    """Plan one pair and print which beams of each scanner read one witness's obstacle."""
+    from pytest_lasertest.explain_report import (
+        explain_json,
+        explain_scans,
+        explain_text,
+        find_witness,
+        witness_ids,
+    )
+    from pytest_lasertest.solver.plan import plan_pair
+
+    spec = load_pairs_file(path)
+    pair = next((pair for pair in spec.pairs if pair.name == pair_name), None)
+    if pair is None:
+        names = ", ".join(pair.name for pair in spec.pairs)
+        return _usage_error(f"no pair {pair_name!r} in {path}; pairs: {names}")
+    plan = plan_pair(spec, pair)
+    witness = find_witness(plan, witness_id)
+    if witness is None:
+        ids = ", ".join(witness_ids(plan)) or "none"
+        return _usage_error(f"pair {pair_name!r} has no witness {witness_id!r}; witnesses: {ids}")
+    scans = explain_scans(plan.scene, witness)
+    if as_json:
+        print(json.dumps(explain_json(pair_name, witness, scans), indent=2))
+    else:
+        print(explain_text(pair_name, witness, scans))
+    return 0
+
+
+def _usage_error(message: str) -> int:
+    print(f"lasertest: {message}", file=sys.stderr)
+    return 2
 
 
 def print_catalogue(*, as_json: bool) -> int:

@@ -1,4 +1,7 @@
-"""Collection nodes: a pairs file, and the items it yields for each pair."""
+"""Collection nodes: a pairs file, and the items it yields for each pair.
+
+Each pair yields `PAIR[coverage]` and its placement items (`placement_item.py`).
+"""
 
 from __future__ import annotations
 
@@ -12,6 +15,7 @@ from _pytest._code.code import TerminalRepr, TracebackStyle
 from pytest_lasertest.artifacts.files import artifact_path, write_json
 from pytest_lasertest.coverage import CoverageChange, CoverageComparison, compare_coverage
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
+from pytest_lasertest.placement_item import placement_items
 from pytest_lasertest.sensor import LaserProfile
 from pytest_lasertest.spec import Pair, PairsFile, SpecError, load_pairs_file
 from pytest_lasertest.spec.errors import display_path
@@ -27,10 +31,13 @@ class PairFile(pytest.File):
             spec = load_pairs_file(self.path)
         except SpecError as error:
             raise self.CollectError(str(error)) from None
-        return [
-            CoverageItem.from_parent(self, name=f"{pair.name}[coverage]", spec=spec, pair=pair)
-            for pair in spec.pairs
-        ]
+        items: list[pytest.Item] = []
+        for pair in spec.pairs:
+            items.append(
+                CoverageItem.from_parent(self, name=f"{pair.name}[coverage]", spec=spec, pair=pair)
+            )
+            items += placement_items(self, spec, pair)
+        return items
 
 
 class CoverageLost(Exception):
@@ -50,6 +57,7 @@ class CoverageItem(pytest.Item):
         self.spec = spec
         self.pair = pair
         self.add_marker("lasertest")
+        self.add_marker("coverage")
 
     @property
     def options(self) -> LaserOptions:

@@ -4,7 +4,7 @@ A placement discriminates a pair in one direction when, with every margin at lea
 - the detector's scan at the anchor instant has a beam that passes inside the obstacle, in range,
   and the obstacle stands higher than the detector's scan plane;
 - every scan the misser takes up to the placement's `until` instant (at or after the anchor) has
-  every beam pass clear of it, or enter it nearer than range_min (REP 117's -inf, which a costmap
+  every beam pass clear of it from range_min on (nearer, REP 117 reports -inf, which a costmap
   drops), or the obstacle is lower than the misser's scan plane;
 - the robot, braking from the anchor, stands before touching it;
 - and it obstructs: it reaches into the footprint swept after the robot would have stopped.
@@ -39,7 +39,7 @@ DIRECTIONS: tuple[Direction, ...] = ("candidate-misses", "baseline-misses")
 # PyBullet reports ray hits up to about 1 mm outside exact shapes: keep well clear of every edge.
 REQUIRED_MARGIN = 0.005  # m
 # Beams further than this from the obstacle get a lower bound on their clearance, not its exact
-# value: the verdict needs exact figures near REQUIRED_MARGIN, and culling makes it ten times faster.
+# value: the verdict needs exact figures near REQUIRED_MARGIN, and culling makes it much faster.
 EXACT_WITHIN = 0.1  # m
 
 
@@ -166,26 +166,23 @@ def hit_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) ->
 def miss_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:
     """How surely each scan misses the obstacle, shape (T,), m; negative: some beam reads it.
 
-    A beam misses when it passes clear, or when it meets the obstacle first nearer than range_min.
-    Margins beyond EXACT_WITHIN may be reported as a lower bound.
+    Only the part of a beam from range_min to range_max can give a reading in range (nearer, REP
+    117 reports -inf, which a costmap drops), so a beam misses by that part's clearance. Margins
+    beyond EXACT_WITHIN may be reported as a lower bound.
     """
     origins, directions = profile.rays(poses)
     flat_origins, flat_directions = origins.reshape(-1, 2), directions.reshape(-1, 2)
-    clear = _rough_clearances(flat_origins, flat_directions, profile.range_max, obstacle)
+    start, end = profile.range_min, profile.range_max
+    clear = _rough_clearances(flat_origins, flat_directions, start, end, obstacle)
     near = np.flatnonzero(clear < EXACT_WITHIN)
-    near_origins, near_directions = flat_origins[near], flat_directions[near]
-    exact = _clearances(near_origins, near_directions, 0.0, profile.range_max, obstacle)
-    if profile.range_min > 0:
-        entry = ray_distances(near_origins, near_directions, obstacle)
-        exact = np.maximum(exact, profile.range_min - entry)
-    clear[near] = exact
+    clear[near] = _clearances(flat_origins[near], flat_directions[near], start, end, obstacle)
     nearest = clear.reshape(origins.shape[:2]).min(axis=1)
     lower: FloatArray = np.maximum(nearest, profile.scan_height - obstacle.height)
     return lower
 
 
 def _rough_clearances(
-    origins: FloatArray, directions: FloatArray, end: float, obstacle: Obstacle
+    origins: FloatArray, directions: FloatArray, start: float, end: float, obstacle: Obstacle
 ) -> FloatArray:
     """A cheap lower bound on each segment's clearance, from the obstacle's bounding circle.
 
@@ -193,9 +190,9 @@ def _rough_clearances(
     to the circle through its corners overstates by at most a factor sqrt(2).
     """
     if isinstance(obstacle, Cylinder):
-        return _clearances(origins, directions, 0.0, end, obstacle)
+        return _clearances(origins, directions, start, end, obstacle)
     circle = Cylinder(obstacle.x, obstacle.y, math.hypot(obstacle.length, obstacle.width) / 2, 1.0)
-    rough: FloatArray = _clearances(origins, directions, 0.0, end, circle) / math.sqrt(2.0)
+    rough: FloatArray = _clearances(origins, directions, start, end, circle) / math.sqrt(2.0)
     return rough
 
 

@@ -90,7 +90,7 @@ def plan_text(plan: PairPlan) -> str:
         for witness in direction.witnesses:
             x, y, yaw = witness.pose
             lines.append(
-                f"    {witness.id}: {_describe(witness.placement.obstacle)}; "
+                f"    {witness.id}: {describe_obstacle(witness.placement.obstacle)}; "
                 f"read by the {DETECTED_BY[direction.direction]} from ({x:.2f}, {y:.2f}, "
                 f"{yaw:.2f}) at t = {witness.placement.anchor:.2f} s; "
                 f"margin {witness.verification.margin * 1000:.1f} mm; {_lead(witness)}"
@@ -109,7 +109,8 @@ def _lead(witness: Witness) -> str:
     return f"the {misser} misses it for {lead:.2f} m more"
 
 
-def _describe(obstacle: Obstacle) -> str:
+def describe_obstacle(obstacle: Obstacle) -> str:
+    """`box 0.051 x 0.051 m, yaw 0.000 rad, at (4.524, -0.312) m, 0.327 m high`."""
     where = f"at ({obstacle.x:.3f}, {obstacle.y:.3f}) m, {obstacle.height:.3f} m high"
     if isinstance(obstacle, Box):
         sides = f"{obstacle.length:.3f} x {obstacle.width:.3f} m"

@@ -8,16 +8,33 @@ from typing import Any
 import hypothesis  # noqa: F401  (see below)
 import pytest
 
-import pytest_lasertest.collect  # noqa: F401  (see below)
+import pytest_lasertest.collect  # (see below)
+import pytest_lasertest.solver.plan  # noqa: F401  (see below)
 from pytest_lasertest.sensor import LaserProfile
 
-# hypothesis and pytest_lasertest.collect are imported only to stay loaded across pytester runs:
-# in-process runs drop the modules they imported, numpy cannot be imported twice in one process,
-# and Hypothesis's plugin would re-import hypothesis on every run.
+# hypothesis, pytest_lasertest.collect and the solver (with z3) are imported only to stay loaded
+# across pytester runs: in-process runs drop the modules they imported, numpy cannot be imported
+# twice in one process, and Hypothesis's plugin would re-import hypothesis on every run.
 pytest_plugins = ["pytester"]
 
 REPO = Path(__file__).resolve().parents[1]
 EXAMPLES = REPO / "examples"
+
+# The paper's size pair on a 6 m run, one witness per direction: cheap to plan.
+SIZE_PAIR = """\
+robot: husky
+world:
+  start: {x: 0.0, y: 0.0, yaw: 0.0}
+  goal: {x: 6.0, y: 0.0}
+  time_limit: 60.0
+settings:
+  min_obstacle_size: 0.0507
+  witnesses: 1
+pairs:
+  size:
+    baseline: {model: clearpath_lms1xx_gazebo, samples: 32, range: {max: 10.0}}
+    candidate: {model: clearpath_lms1xx_gazebo, samples: 16, range: {max: 10.0}}
+"""
 
 # Line numbers matter: tests that break a field assert the line it is on.
 VALID_PAIRS = """\

@@ -1,16 +1,25 @@
-"""`lasertest catalogue` lists the scanner models; `lasertest doctor` checks the installation."""
+"""`lasertest plan` finds placements, `explain` shows their beams, `catalogue` lists the scanner
+models, `doctor` checks the installation."""
 
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 
 from pytest_lasertest import cli
 from pytest_lasertest.cli import main
+from pytest_lasertest.explain_report import explain_scans, explain_text
+from pytest_lasertest.geometry import Box
+from pytest_lasertest.path import nominal_path
+from pytest_lasertest.placement import Placement, Scene, Verification, Witness
+from pytest_lasertest.spec import load_pairs_file
+from tests.conftest import SIZE_PAIR
 
 REQUIRED_MODELS = {
     "sick_lms111",
@@ -98,22 +107,6 @@ def test_the_console_script_runs_and_prints_no_pybullet_banner() -> None:
     assert "build time" not in result.stdout + result.stderr
 
 
-SIZE_PAIR = """\
-robot: husky
-world:
-  start: {x: 0.0, y: 0.0, yaw: 0.0}
-  goal: {x: 6.0, y: 0.0}
-  time_limit: 60.0
-settings:
-  min_obstacle_size: 0.0507
-  witnesses: 1
-pairs:
-  size:
-    baseline: {model: clearpath_lms1xx_gazebo, samples: 32, range: {max: 10.0}}
-    candidate: {model: clearpath_lms1xx_gazebo, samples: 16, range: {max: 10.0}}
-"""
-
-
 def test_plan_json_keeps_the_documented_contract_and_is_the_same_every_run(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -156,7 +149,10 @@ def test_plan_prints_each_witness_with_its_margin(
     out = capsys.readouterr().out
     assert "candidate-misses-0: " in out
     assert "read by the baseline" in out
-    assert "margin 20.0 mm" in out
+    margins = [float(m) for m in re.findall(r"margin (\d+\.\d) mm", out)]
+    assert margins
+    assert all(5.0 <= margin <= 20.0 for margin in margins)
+    assert "the candidate misses it for " in out
 
 
 def test_plan_of_a_broken_pairs_file_names_the_line_and_exits_2(
@@ -168,3 +164,117 @@ def test_plan_of_a_broken_pairs_file_names_the_line_and_exits_2(
     assert "size.lasertest.yaml:8: settings.witnesses: 0 witnesses per direction" in (
         capsys.readouterr().err
     )
+
+
+@pytest.fixture
+def size_pairs(tmp_path: Path) -> Path:
+    """The size pair (32 beams -> 16), one witness per direction."""
+    pairs = tmp_path / "size.lasertest.yaml"
+    pairs.write_text(SIZE_PAIR)
+    return pairs
+
+
+def explained(pairs: Path, pair: str, witness: str, capsys: pytest.CaptureFixture[str]) -> Any:
+    assert main(["explain", str(pairs), pair, witness, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_explain_lists_the_detector_hits_and_no_misser_hits(
+    size_pairs: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    detector, misser, later = explained(size_pairs, "size", "candidate-misses-0", capsys)["scans"]
+    assert (detector["scanner"], detector["role"]) == ("baseline", "detector")
+    assert (misser["scanner"], misser["role"]) == ("candidate", "misser")
+    assert detector["hits"]
+    assert misser["hits"] == []
+    assert later["hits"] == []
+    assert detector["time"] == misser["time"] <= later["time"]
+    assert len(detector["hits"]) + len(detector["too_near"]) + detector["misses"] == 32
+    assert misser["misses"] == 16
+    assert misser["clearance"] >= 0.005
+    assert later["clearance"] >= 0.005
+
+
+def test_explain_prints_the_hits_as_runs_of_beams_and_says_the_misser_still_misses(
+    size_pairs: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["explain", str(size_pairs), "size", "candidate-misses-0"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("size candidate-misses-0: box ")
+    assert lines[2].startswith("  baseline (detector) at the anchor, t = 0.00 s, pose (")
+    assert lines[2].endswith(": reads it")
+    assert re.fullmatch(r"    beams? \d+(-\d+)? \(angles? [-.\d]+ rad\): [\d.]+ m", lines[3])
+    assert lines[-2].startswith("  candidate (misser) last scan up to until, t = ")
+    assert lines[-2].endswith(": still misses it")
+    assert lines[-1].startswith("    16 of 16 beams miss; nearest beam clears it by ")
+
+
+def test_explain_json_keeps_the_documented_keys(
+    size_pairs: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    explanation = explained(size_pairs, "size", "baseline-misses-0", capsys)
+    assert set(explanation) == {"pair", "witness", "obstacle", "scans"}
+    assert (explanation["pair"], explanation["witness"]) == ("size", "baseline-misses-0")
+    assert explanation["obstacle"]["shape"] in {"box", "cylinder"}
+    assert [scan["scanner"] for scan in explanation["scans"]] == [
+        "candidate",
+        "baseline",
+        "baseline",
+    ]
+    for scan in explanation["scans"]:
+        assert set(scan) == {
+            "scanner",
+            "role",
+            "time",
+            "pose",
+            "hits",
+            "too_near",
+            "misses",
+            "clearance",
+        }
+        assert all(set(hit) == {"beam", "angle", "range"} for hit in scan["hits"])
+    assert explanation["scans"][0]["clearance"] is None
+
+
+def test_explain_of_an_unknown_pair_names_the_pairs_and_exits_2(
+    size_pairs: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["explain", str(size_pairs), "sise", "candidate-misses-0"]) == 2
+    captured = capsys.readouterr()
+    assert captured.err == f"lasertest: no pair 'sise' in {size_pairs}; pairs: size\n"
+    assert captured.out == ""
+
+
+def test_explain_of_an_unknown_witness_names_the_witnesses_and_exits_2(
+    size_pairs: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["explain", str(size_pairs), "size", "candidate-misses-1"]) == 2
+    assert capsys.readouterr().err == (
+        "lasertest: pair 'size' has no witness 'candidate-misses-1'; "
+        "witnesses: candidate-misses-0, baseline-misses-0\n"
+    )
+
+
+NEAR_PAIR = SIZE_PAIR.replace("range: {max: 10.0}}", "range: {min: 0.5, max: 10.0}}", 1)
+
+
+def test_beams_that_meet_the_obstacle_before_range_min_are_listed_as_too_near(
+    tmp_path: Path,
+) -> None:
+    pairs = tmp_path / "near.lasertest.yaml"
+    pairs.write_text(NEAR_PAIR)
+    spec = load_pairs_file(pairs)
+    (pair,) = spec.pairs
+    robot, world = spec.robot, spec.world
+    path = nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
+    scene = Scene(pair.baseline.profile, pair.candidate.profile, robot, path)
+    box = Box(x=0.337 + 0.3, y=0.0, yaw=0.0, length=0.1, width=0.16, height=1.0)
+    verification = Verification(0.0, 0.0, 0.0, 0.0, (), 0.0, late=False)
+    witness = Witness(0, Placement(box, "baseline-misses", 0.0, 0.0), verification, (0, 0, 0))
+    detector, misser, _ = explain_scans(scene, witness)
+    assert detector.scanner == "candidate"
+    assert [hit.beam for hit in detector.hits] == [7, 8]
+    assert (misser.hits, misser.too_near, misser.misses) == ((), (14, 15, 16, 17), 28)
+    text = explain_text("size", witness, (detector, misser))
+    assert "    beams 7-8 (angles -0.157..0.157 rad): 0.25 m\n" in text
+    assert "    nearer than range_min (-inf): beams 14-17\n" in text

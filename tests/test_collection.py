@@ -2,19 +2,38 @@
 
 from __future__ import annotations
 
+import dataclasses
+import json
 import re
 import shutil
 import xml.etree.ElementTree as ET
 from pathlib import Path
+from typing import NamedTuple
 
 import pytest
 
-from tests.conftest import EXAMPLES
+from pytest_lasertest.placement import Placement, Scene, Verification, verify
+from tests.conftest import EXAMPLES, SIZE_PAIR
+
+
+def pair_items(file: str, pair: str, witnesses: int = 3) -> list[str]:
+    """The ids a pair collects: its coverage item, then one per direction and witness index."""
+    return [f"{file}::{pair}[coverage]"] + [
+        f"{file}::{pair}[{direction}-{index}]"
+        for direction in ("candidate-misses", "baseline-misses")
+        for index in range(witnesses)
+    ]
+
+
+def gate_items(file: str) -> list[str]:
+    """The ids of VALID_PAIRS (tests/conftest.py) written to `file`."""
+    return pair_items(file, "to_lms111") + pair_items(file, "same")
+
 
 PAPER_ITEMS = [
-    "examples/paper.lasertest.yaml::blind_spot[coverage]",
-    "examples/paper.lasertest.yaml::distance[coverage]",
-    "examples/paper.lasertest.yaml::size[coverage]",
+    item
+    for pair in ("blind_spot", "distance", "size")
+    for item in pair_items("examples/paper.lasertest.yaml", pair)
 ]
 
 
@@ -24,12 +43,16 @@ def examples(pytester: pytest.Pytester) -> Path:
     return Path(shutil.copytree(EXAMPLES, pytester.path / "examples"))
 
 
+# Runs that test the plumbing, not placements, leave the solver out: it takes seconds per pair.
+NO_PLACEMENTS = ("-m", "not placement")
+
+
 def collected(result: pytest.RunResult) -> list[str]:
     """The item ids of a `--collect-only -q` run."""
     return [line for line in result.stdout.lines if "::" in line]
 
 
-def test_the_paper_example_collects_one_item_per_pair_of_table_iv_b(
+def test_the_paper_example_collects_seven_items_per_pair_of_table_iv_b(
     pytester: pytest.Pytester, examples: Path
 ) -> None:
     result = pytester.runpytest(
@@ -48,31 +71,13 @@ def test_collection_is_identical_across_runs_and_under_xdist(
     assert first == second == distributed == PAPER_ITEMS
 
 
-def test_items_run_the_same_under_xdist_as_serially(
-    pytester: pytest.Pytester, examples: Path
-) -> None:
-    serial = pytester.runpytest_subprocess("examples", "-rA", "--laser-seed=3")
-    distributed = pytester.runpytest_subprocess("examples", "-rA", "--laser-seed=3", "-n", "2")
-
-    def outcomes(result: pytest.RunResult) -> list[str]:
-        return sorted(re.findall(r"^(PASSED|FAILED) (\S+)", result.stdout.str(), re.MULTILINE))
-
-    assert outcomes(serial) == outcomes(distributed)
-    assert len(outcomes(serial)) == 5
-
-
 def test_files_named_lasertest_yaml_are_collected_and_other_yaml_is_not(
     pytester: pytest.Pytester, pairs_file: Path
 ) -> None:
     shutil.copy(pairs_file, pytester.path / "gate.lasertest.yml")
     shutil.copy(pairs_file, pytester.path / "settings.yaml")
     result = pytester.runpytest("--collect-only", "-q")
-    assert collected(result) == [
-        "gate.lasertest.yaml::to_lms111[coverage]",
-        "gate.lasertest.yaml::same[coverage]",
-        "gate.lasertest.yml::to_lms111[coverage]",
-        "gate.lasertest.yml::same[coverage]",
-    ]
+    assert collected(result) == gate_items("gate.lasertest.yaml") + gate_items("gate.lasertest.yml")
 
 
 def test_laser_pairs_alone_runs_that_file_and_not_the_test_suite(
@@ -81,16 +86,15 @@ def test_laser_pairs_alone_runs_that_file_and_not_the_test_suite(
     pairs_file.rename(pytester.path / "robot-pairs.yaml")
     pytester.makepyfile(test_unit="def test_unit(): pass")
     result = pytester.runpytest("--laser-pairs", "robot-pairs.yaml", "--collect-only", "-q")
-    assert collected(result) == [
-        "robot-pairs.yaml::to_lms111[coverage]",
-        "robot-pairs.yaml::same[coverage]",
-    ]
+    assert collected(result) == gate_items("robot-pairs.yaml")
 
 
 def test_laser_pairs_with_arguments_runs_both(pytester: pytest.Pytester, pairs_file: Path) -> None:
     pairs_file.rename(pytester.path / "robot-pairs.yaml")
     pytester.makepyfile(test_unit="def test_unit(): pass")
-    result = pytester.runpytest("test_unit.py", "--laser-pairs", "robot-pairs.yaml", "-q")
+    result = pytester.runpytest(
+        "test_unit.py", "--laser-pairs", "robot-pairs.yaml", "-q", *NO_PLACEMENTS
+    )
     result.assert_outcomes(passed=2, failed=1)
 
 
@@ -100,7 +104,7 @@ def test_ini_laser_pairs_are_collected_alongside_the_test_suite(
     pairs_file.rename(pytester.path / "robot-pairs.yaml")
     pytester.makeini("[pytest]\nlaser_pairs = robot-pairs.yaml\n")
     pytester.makepyfile(test_unit="def test_unit(): pass")
-    result = pytester.runpytest("-q")
+    result = pytester.runpytest("-q", *NO_PLACEMENTS)
     result.assert_outcomes(passed=2, failed=1)
 
 
@@ -112,7 +116,9 @@ def test_a_relative_laser_pairs_path_works_from_a_subdirectory_under_xdist(
     pairs_file.rename(subdirectory / "gate.yaml")
     with pytest.MonkeyPatch.context() as patch:
         patch.chdir(subdirectory)
-        result = pytester.runpytest_subprocess("--laser-pairs", "gate.yaml", "-n", "2")
+        result = pytester.runpytest_subprocess(
+            "--laser-pairs", "gate.yaml", "-n", "2", *NO_PLACEMENTS
+        )
     result.assert_outcomes(passed=1, failed=1)
 
 
@@ -148,7 +154,7 @@ def test_a_random_seed_is_fresh_each_run(pytester: pytest.Pytester, pairs_file: 
 def test_xdist_workers_use_the_seed_the_header_prints(
     pytester: pytest.Pytester, pairs_file: Path
 ) -> None:
-    result = pytester.runpytest_subprocess("-n", "2", "--junitxml=report.xml")
+    result = pytester.runpytest_subprocess("-n", "2", "--junitxml=report.xml", *NO_PLACEMENTS)
     match = re.search(r"--laser-seed=(\d+)", result.stdout.str())
     assert match is not None
     seeds = {
@@ -163,17 +169,14 @@ def test_items_carry_the_lasertest_marker(pytester: pytest.Pytester, pairs_file:
     pytester.makepyfile(test_unit="def test_unit(): pass")
     selected = pytester.runpytest("-m", "lasertest", "--co", "-q")
     others = pytester.runpytest("-m", "not lasertest", "--co", "-q")
-    assert collected(selected) == [
-        "gate.lasertest.yaml::to_lms111[coverage]",
-        "gate.lasertest.yaml::same[coverage]",
-    ]
+    assert collected(selected) == gate_items("gate.lasertest.yaml")
     assert collected(others) == ["test_unit.py::test_unit"]
 
 
 def test_a_failure_points_at_the_pair_in_the_pairs_file(
     pytester: pytest.Pytester, pairs_file: Path
 ) -> None:
-    result = pytester.runpytest("-q", "--laser-seed=11")
+    result = pytester.runpytest("-q", "--laser-seed=11", *NO_PLACEMENTS)
     result.assert_outcomes(passed=1, failed=1)
     result.stdout.fnmatch_lines(
         [
@@ -190,3 +193,183 @@ def test_a_failure_points_at_the_pair_in_the_pairs_file(
             "  replay     pytest 'gate.lasertest.yaml::to_lms111[[]coverage[]]' --laser-seed=11 *",
         ]
     )
+
+
+# A pair that differs only in samples, and one that does not differ at all; one witness each.
+PLACEMENT_PAIRS = (
+    SIZE_PAIR
+    + """\
+  same:
+    baseline: {model: clearpath_lms1xx_gazebo, samples: 32}
+    candidate: {model: clearpath_lms1xx_gazebo, samples: 32}
+"""
+)
+
+# Records whether z3 is loaded once collection is done, and again once the items have run.
+Z3_PROBE = """\
+import sys
+
+loaded = []
+
+def pytest_collection_finish(session):
+    loaded.append("z3" in sys.modules)
+
+def pytest_sessionfinish(session):
+    loaded.append("z3" in sys.modules)
+    with open("z3.txt", "w") as probe:
+        probe.write(" ".join(map(str, loaded)))
+"""
+
+
+@pytest.fixture
+def placement_pairs(pytester: pytest.Pytester) -> Path:
+    """PLACEMENT_PAIRS as `gate.lasertest.yaml` in the pytester directory."""
+    path = pytester.path / "gate.lasertest.yaml"
+    path.write_text(PLACEMENT_PAIRS)
+    return path
+
+
+class JunitCase(NamedTuple):
+    """One test case of a JUnit XML report."""
+
+    outcome: str  # passed, failure, error or skipped
+    message: str  # the failure's or the skip's message
+    properties: dict[str, str]
+
+
+def junit_cases(path: Path) -> dict[str, JunitCase]:
+    """The test cases of a JUnit XML report, by item id."""
+    cases = {}
+    for case in ET.parse(path).iter("testcase"):
+        ending = next((child for child in case if child.tag != "properties"), None)
+        properties = {prop.get("name", ""): prop.get("value", "") for prop in case.iter("property")}
+        cases[f"{case.get('classname')}::{case.get('name')}"] = JunitCase(
+            ending.tag if ending is not None else "passed",
+            ending.get("message", "") if ending is not None else "",
+            properties,
+        )
+    return cases
+
+
+def test_each_pair_collects_a_coverage_item_and_one_item_per_direction_and_witness(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    placement_pairs.write_text(PLACEMENT_PAIRS.replace("witnesses: 1", "witnesses: 2"))
+    result = pytester.runpytest("--collect-only", "-q")
+    assert collected(result) == [
+        "gate.lasertest.yaml::size[coverage]",
+        "gate.lasertest.yaml::size[candidate-misses-0]",
+        "gate.lasertest.yaml::size[candidate-misses-1]",
+        "gate.lasertest.yaml::size[baseline-misses-0]",
+        "gate.lasertest.yaml::size[baseline-misses-1]",
+        "gate.lasertest.yaml::same[coverage]",
+        "gate.lasertest.yaml::same[candidate-misses-0]",
+        "gate.lasertest.yaml::same[candidate-misses-1]",
+        "gate.lasertest.yaml::same[baseline-misses-0]",
+        "gate.lasertest.yaml::same[baseline-misses-1]",
+    ]
+
+
+def test_collection_does_not_load_z3_and_running_a_placement_item_does(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    pytester.makeconftest(Z3_PROBE)
+    pytester.runpytest_subprocess("-k", "size and candidate").assert_outcomes(passed=1)
+    assert (pytester.path / "z3.txt").read_text() == "False True"
+
+
+def test_a_pair_that_differs_only_in_samples_passes_its_placement_items(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    result = pytester.runpytest("-k", "size", "-m", "placement", "--junitxml=report.xml")
+    result.assert_outcomes(passed=2)
+    cases = junit_cases(pytester.path / "report.xml")
+    for direction, detector in [("candidate-misses", "baseline"), ("baseline-misses", "candidate")]:
+        outcome, _, properties = cases[f"gate.lasertest.yaml::size[{direction}-0]"]
+        assert outcome == "passed"
+        assert properties["lasertest.detected_by"] == detector
+        assert float(properties["lasertest.margin"]) >= 0.005
+        assert float(properties["lasertest.lead"]) >= 0.0
+        assert properties["lasertest.late"] in {"True", "False"}
+        assert re.fullmatch(r"(box|cylinder) .* m high", properties["lasertest.obstacle"])
+
+
+def test_placement_items_of_identical_scanners_are_skipped_because_they_cast_the_same_beams(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    result = pytester.runpytest("-k", "same", "-rs")
+    result.assert_outcomes(passed=1, skipped=2)
+    result.stdout.fnmatch_lines(
+        ["SKIPPED [[]2[]] gate.lasertest.yaml:13: unsat: the two scanners cast the same beams *"]
+    )
+
+
+def test_not_placement_deselects_the_placement_items_and_not_coverage_the_coverage_items(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    without_placements = pytester.runpytest("-m", "not placement", "--co", "-q")
+    without_coverage = pytester.runpytest("-m", "not coverage", "--co", "-q")
+    assert collected(without_placements) == [
+        "gate.lasertest.yaml::size[coverage]",
+        "gate.lasertest.yaml::same[coverage]",
+    ]
+    assert collected(without_coverage) == [
+        "gate.lasertest.yaml::size[candidate-misses-0]",
+        "gate.lasertest.yaml::size[baseline-misses-0]",
+        "gate.lasertest.yaml::same[candidate-misses-0]",
+        "gate.lasertest.yaml::same[baseline-misses-0]",
+    ]
+
+
+def test_items_run_the_same_under_xdist_as_serially(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    pytester.runpytest("--laser-seed=3", "--junitxml=serial.xml")
+    pytester.runpytest_subprocess("--laser-seed=3", "--junitxml=xdist.xml", "-n", "2")
+    serial = junit_cases(pytester.path / "serial.xml")
+    distributed = junit_cases(pytester.path / "xdist.xml")
+    assert serial == distributed
+    assert {name: case.outcome for name, case in serial.items()} == {
+        "gate.lasertest.yaml::size[coverage]": "failure",
+        "gate.lasertest.yaml::size[candidate-misses-0]": "passed",
+        "gate.lasertest.yaml::size[baseline-misses-0]": "passed",
+        "gate.lasertest.yaml::same[coverage]": "passed",
+        "gate.lasertest.yaml::same[candidate-misses-0]": "skipped",
+        "gate.lasertest.yaml::same[baseline-misses-0]": "skipped",
+    }
+
+
+def test_a_witness_the_ray_cast_rejects_fails_as_a_bug_in_the_solver(
+    pytester: pytest.Pytester, placement_pairs: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from pytest_lasertest import placement_item
+
+    def rejecting(scene: Scene, placement: Placement) -> Verification:
+        return dataclasses.replace(verify(scene, placement), concealment=-0.001)
+
+    monkeypatch.setattr(placement_item, "verify", rejecting)
+    result = pytester.runpytest(
+        "-k", "size and candidate", "--laser-seed=2", "--laser-artifacts=out"
+    )
+    result.assert_outcomes(failed=1)
+    result.stdout.fnmatch_lines(
+        [
+            "*_ size[[]candidate-misses-0[]] _*",
+            "the exact ray cast rejects witness candidate-misses-0, which the solver returned as "
+            "verified: this is a bug in pytest-lasertest's solver*",
+            "  pair       size (gate.lasertest.yaml:10)",
+            "  baseline   clearpath_lms1xx_gazebo: 32 beams *",
+            "  candidate  clearpath_lms1xx_gazebo: 16 beams *",
+            "  obstacle   * m high",
+            "  read by    the baseline at t = * s, robot at (*)",
+            "  margins    detection * mm, concealment -1.0 mm, clearance * mm, obstruction * mm; "
+            "each must reach 5.0 mm",
+            "  replay     pytest 'gate.lasertest.yaml::size[[]candidate-misses-0[]]' *",
+            "  evidence   out/gate.lasertest.yaml/size_candidate-misses-0.json",
+        ]
+    )
+    evidence = json.loads(
+        (pytester.path / "out/gate.lasertest.yaml/size_candidate-misses-0.json").read_text()
+    )
+    assert evidence["witness"]["id"] == "candidate-misses-0"
+    assert evidence["verification"]["concealment"] == -0.001

@@ -1,4 +1,5 @@
-"""The bundled examples: the paper's downgrades fail on the attribute each one changed."""
+"""The bundled examples: the paper's downgrades fail on the attribute each one changed, and the
+paper's size pair has a verified placement in each direction."""
 
 from __future__ import annotations
 
@@ -14,9 +15,16 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
 ) -> None:
     shutil.copytree(EXAMPLES, pytester.path / "examples")
     result = pytester.runpytest("examples", "-rA")
-    result.assert_outcomes(passed=1, failed=4)
+    # Only coverage items fail; placement items pass, or are skipped when there is no witness.
+    failed = [line.split()[1] for line in result.stdout.lines if line.startswith("FAILED ")]
+    assert failed
+    assert all(item.endswith("[coverage]") for item in failed)
     result.stdout.fnmatch_lines(
-        ["PASSED examples/husky.lasertest.yaml::ust10_to_ust20[[]coverage[]]"]
+        [
+            "PASSED examples/husky.lasertest.yaml::ust10_to_ust20[[]coverage[]]",
+            "PASSED examples/paper.lasertest.yaml::size[[]candidate-misses-0[]]",
+            "PASSED examples/paper.lasertest.yaml::size[[]baseline-misses-0[]]",
+        ]
     )
     output = result.stdout.str()
     for pair, loss in [

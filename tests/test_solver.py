@@ -3,17 +3,26 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from pytest_lasertest.geometry import Box, Cylinder
+from pytest_lasertest.geometry import Box, Cylinder, Point2D, Pose2D, Pose3D
 from pytest_lasertest.path import nominal_path
-from pytest_lasertest.placement import REQUIRED_MARGIN, Placement, Scene, readings, verify
+from pytest_lasertest.placement import (
+    REQUIRED_MARGIN,
+    Direction,
+    Placement,
+    Scene,
+    readings,
+    verify,
+)
 from pytest_lasertest.solver.encoding import ObstacleShape
 from pytest_lasertest.solver.plan import plan_direction
-from pytest_lasertest.solver.search import Found, Query, SearchSettings
+from pytest_lasertest.solver.search import Found, Query, SearchSettings, needed_room
+from pytest_lasertest.solver.seeds import seeds
 from pytest_lasertest.spec import load_pairs_file
 from pytest_lasertest.spec.constraints import Constraint, parse_formula
 from pytest_lasertest.spec.errors import Location
@@ -41,27 +50,110 @@ def test_the_sixteen_beam_scanner_misses_a_thin_obstacle_the_thirty_two_beam_one
     assert not np.isfinite(readings(scene("size").candidate, pose, obstacle)).any()
 
 
-def test_the_five_metre_scanner_misses_an_obstacle_the_ten_metre_one_reads_at_the_start() -> None:
+def test_the_five_metre_scanner_misses_for_metres_what_the_ten_metre_one_reads_at_the_start() -> (
+    None
+):
     plan = plan_direction(scene("distance"), "candidate-misses", SETTINGS)
     (witness,) = plan.witnesses
     assert witness.placement.anchor == 0.0
     obstacle = witness.placement.obstacle
     assert 5.0 < np.hypot(obstacle.x - 0.337, obstacle.y) < 10.0 + 0.337
+    # Staying discriminating along the approach: the paper's block lasted 0.16 m.
+    assert witness.verification.lead > 4.0
+
+
+def test_a_thin_pole_stays_between_the_sixteen_beams_for_metres_of_the_approach() -> None:
+    plan = plan_direction(scene("size"), "candidate-misses", SETTINGS)
+    (witness,) = plan.witnesses
+    assert witness.verification.lead > 2.0
+    until = scene("size").path.poses_at(np.array([witness.placement.until]))
+    assert not np.isfinite(
+        readings(scene("size").candidate, until, witness.placement.obstacle)
+    ).any()
 
 
 def test_a_narrower_field_of_view_hides_nothing_in_the_way_ahead_at_the_start_pose() -> None:
-    query = Query(scene("blind_spot"), "candidate-misses", 0.0, ObstacleShape("cylinder"), SETTINGS)
-    answer = dataclasses.replace(query, beam_limit=None).run()
-    assert not isinstance(answer, Found)
-    assert answer.verdict == "unsat"
-    assert {"detector", "path", "misser@0.000"} <= set(answer.core)
+    plan = plan_direction(scene("blind_spot"), "candidate-misses", SETTINGS)
+    assert plan.status == "unsat"
+    assert not plan.witnesses
+    assert "at the start pose" in plan.explanation
+    assert "outside its field of view (-1 to 1 rad), ruled out by" in plan.explanation
+    assert "being in the robot's way" in plan.explanation
+
+
+def test_a_route_that_turns_through_the_blind_wedge_gives_the_blind_spot_a_witness() -> None:
+    turning = dataclasses.replace(
+        scene("blind_spot"),
+        path=nominal_path(Pose2D(0.0, 0.0, 0.0), (Point2D(2.0, 0.0), Point2D(2.0, 4.0)), 0.5, 1.0),
+    )
+    plan = plan_direction(turning, "candidate-misses", SETTINGS)
+    assert plan.status == "sat"
+    (witness,) = plan.witnesses
+    origin = turning.candidate.origins(np.array([witness.pose]))[0]
+    obstacle = witness.placement.obstacle
+    bearing = math.atan2(obstacle.y - origin[1], obstacle.x - origin[0]) - witness.pose[2]
+    assert 1.0 < abs(bearing) < 1.57
+
+
+def test_identical_scanners_are_proven_to_have_no_witness() -> None:
+    same = dataclasses.replace(scene("size"), candidate=scene("size").baseline)
+    plan = plan_direction(same, "candidate-misses", SETTINGS)
+    assert plan.status == "unsat"
+    assert "cast the same beams" in plan.explanation
+
+
+def test_a_raised_scanner_misses_a_low_obstacle_the_lower_one_reads() -> None:
+    base = scene("size").baseline
+    raised = dataclasses.replace(base, pose=Pose3D((0.337, 0.0, 0.45), (math.pi, 0.0, 0.0)))
+    plan = plan_direction(
+        dataclasses.replace(scene("size"), candidate=raised), "candidate-misses", SETTINGS
+    )
+    (witness,) = plan.witnesses
+    assert base.scan_height < witness.placement.obstacle.height < raised.scan_height
+    assert witness.verification.late
+
+
+def test_a_longer_minimum_range_misses_an_obstacle_close_to_the_scanner() -> None:
+    base = scene("distance").baseline
+    blind_near = dataclasses.replace(base, range_min=1.0)
+    near = dataclasses.replace(scene("distance"), candidate=blind_near)
+    plan = plan_direction(near, "candidate-misses", SETTINGS)
+    (witness,) = plan.witnesses
+    origin = blind_near.origins(np.array([witness.pose]))[0]
+    obstacle = witness.placement.obstacle
+    assert math.dist(origin, (obstacle.x, obstacle.y)) < 1.0
+    ranges = readings(blind_near, np.array([witness.pose]), obstacle)
+    assert np.any(ranges == -np.inf)
+    assert not np.isfinite(ranges).any()
+
+
+def test_a_slower_scanner_misses_what_the_faster_one_reads_between_its_scans() -> None:
+    base = scene("distance").baseline
+    longer = nominal_path(Pose2D(0.0, 0.0, 0.0), (Point2D(14.0, 0.0),), 0.5, 1.0)
+    slow = dataclasses.replace(base, update_rate=2.0)
+    plan = plan_direction(Scene(base, slow, PAPER.robot, longer), "candidate-misses", SETTINGS)
+    (witness,) = plan.witnesses
+    assert witness.placement.anchor % 0.5 > 0.0
+    stale = longer.poses_at(np.array([witness.placement.anchor // 0.5 * 0.5]))
+    assert not np.isfinite(readings(slow, stale, witness.placement.obstacle)).any()
 
 
 def test_the_same_query_gives_the_same_witness_every_time() -> None:
-    query = Query(scene("size"), "baseline-misses", 1.0, ObstacleShape("box"), SETTINGS)
+    query = _query("baseline-misses", 1.0, ObstacleShape("box"))
     first, second = query.run(), query.run()
     assert isinstance(first, Found)
     assert first == second
+
+
+def test_a_direction_is_planned_alike_every_time() -> None:
+    first = plan_direction(scene("size"), "candidate-misses", SETTINGS)
+    assert plan_direction(scene("size"), "candidate-misses", SETTINGS) == first
+
+
+def _query(direction: Direction, anchor: float, shape: ObstacleShape) -> Query:
+    size = scene("size")
+    (seed, *_) = seeds(size, direction, anchor, needed_room(shape, SETTINGS))
+    return Query(size, direction, anchor, seed, shape, SETTINGS)
 
 
 def test_witnesses_keep_to_the_users_constraints() -> None:
@@ -84,7 +176,8 @@ def test_witnesses_of_one_direction_are_apart_from_each_other() -> None:
 
 def test_the_verifier_rejects_an_obstacle_both_scanners_read() -> None:
     straight_ahead = Cylinder(x=3.0, y=0.5, radius=0.2, height=1.0)
-    verification = verify(scene("distance"), Placement(straight_ahead, "candidate-misses", 0.0))
+    placement = Placement(straight_ahead, "candidate-misses", 0.0, 0.0)
+    verification = verify(scene("distance"), placement)
     assert verification.detection >= REQUIRED_MARGIN
     assert verification.concealment < 0
     assert verification.seen_by_misser_at == (0.0,)
@@ -93,7 +186,7 @@ def test_the_verifier_rejects_an_obstacle_both_scanners_read() -> None:
 
 def test_the_verifier_rejects_an_obstacle_the_robot_cannot_stop_for() -> None:
     at_the_bumper = Box(x=0.6, y=0.0, yaw=0.0, length=0.1, width=0.1, height=1.0)
-    verification = verify(scene("size"), Placement(at_the_bumper, "candidate-misses", 0.0))
+    verification = verify(scene("size"), Placement(at_the_bumper, "candidate-misses", 0.0, 0.0))
     assert verification.clearance < 0
 
 
@@ -106,7 +199,6 @@ def test_an_obstacle_lower_than_the_scan_plane_is_not_read() -> None:
 @pytest.mark.parametrize("shape", ["box", "cylinder"])
 def test_a_witness_survives_the_required_margin_in_both_ray_casts(shape: str) -> None:
     obstacle_shape = ObstacleShape("box" if shape == "box" else "cylinder")
-    query = Query(scene("size"), "candidate-misses", 0.0, obstacle_shape, SETTINGS)
-    found = query.run()
+    found = _query("candidate-misses", 0.0, obstacle_shape).run()
     assert isinstance(found, Found)
     assert found.verification.holds()

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
 from pytest_lasertest.path import nominal_path
@@ -48,22 +50,33 @@ class DirectionSearch:
         anchors = anchor_times(scene, direction, self.settings.anchor_spacing)
         if not anchors:
             return DirectionPlan(direction, "unsat", (), "the path leaves no room to brake")
+        for _ in self.found(anchors):
+            pass
+        if self.witnesses:
+            return DirectionPlan(direction, "sat", tuple(self.witnesses), self._shortfall())
+        return self._without_witness(anchors)
+
+    def _shortfall(self) -> str:
+        """Why fewer witnesses than asked for, if so."""
+        found = len(self.witnesses)
+        if found >= self.settings.witnesses:
+            return ""
+        return f"only {found} diverse witness{'es' if found > 1 else ''} found"
+
+    def found(self, anchors: list[float]) -> Iterator[Witness]:
+        """Each witness as soon as it is verified, each from the next anchor that yields one."""
         cursor = 0
         for index in range(self.settings.witnesses):
             for step in range(len(anchors)):
                 anchor = anchors[(cursor + step) % len(anchors)]
-                found = self._at_anchor(anchor, index)
-                if found is not None:
-                    self.witnesses.append(found)
+                witness = self._at_anchor(anchor, index)
+                if witness is not None:
+                    self.witnesses.append(witness)
                     cursor = (cursor + step + 1) % len(anchors)
+                    yield witness
                     break
             else:
-                break
-        if self.witnesses:
-            missing = self.settings.witnesses - len(self.witnesses)
-            note = f"only {len(self.witnesses)} diverse witnesses found" if missing else ""
-            return DirectionPlan(direction, "sat", tuple(self.witnesses), note)
-        return self._without_witness(anchors)
+                return
 
     def _at_anchor(self, anchor: float, index: int) -> Witness | None:
         pose = self.scene.path.poses_at(np.array([anchor]))[0]
@@ -99,12 +112,13 @@ class DirectionSearch:
         shapes = tuple(shapes_for(0, heading))
         proof = prove(self.scene, self.direction, anchors[0], self.settings, shapes)
         if proof.witness is not None:
-            return DirectionPlan(self.direction, "sat", (proof.witness,), "")
+            self.witnesses.append(proof.witness)
+            return DirectionPlan(self.direction, "sat", (proof.witness,), self._shortfall())
         others = len(anchors) - 1
         searched = (
             f"; no witness found at the other {others} anchors along the path" if others else ""
         )
-        return DirectionPlan(self.direction, proof.verdict, (), proof.explanation + searched)  # type: ignore[arg-type]
+        return DirectionPlan(self.direction, proof.verdict, (), proof.explanation + searched)
 
 
 SAME = (

@@ -14,8 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pytest_lasertest.geometry import FloatArray
 from pytest_lasertest.path import scan_times, swept_polygons
-from pytest_lasertest.placement import Direction, Placement, Scene, Witness, verify
+from pytest_lasertest.placement import Direction, Placement, Scene, Status, Witness, verify
 from pytest_lasertest.solver.backend import Solution, solve
 from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of
 from pytest_lasertest.solver.scans import Region, detected, miss_ways, reaches
@@ -28,13 +29,15 @@ from pytest_lasertest.solver.search import (
 
 SIDE = {"candidate-misses": ("baseline", "candidate"), "baseline-misses": ("candidate", "baseline")}
 PROOF_VARIABLES = (*VARIABLES, "QX", "QY")
+# Ways of missing that a scanner's own figures rule out, not worth a word.
+IMPOSSIBLE = ("outside", "near")
 
 
 @dataclass(frozen=True)
 class Proof:
     """Z3's verdict on one anchor: unsat with the reasons, unknown, or a witness it found."""
 
-    verdict: str  # "unsat", "unknown" or "sat"
+    verdict: Status
     explanation: str
     witness: Witness | None = None
 
@@ -65,9 +68,9 @@ class Question:
             **constraint_blocks(self.settings, shape),
         }
 
-    def pose(self) -> np.ndarray:
+    def pose(self) -> FloatArray:
         """The robot at the anchor, [x, y, yaw]."""
-        poses: np.ndarray = self.scene.path.poses_at(np.array([self.anchor]))[0]
+        poses: FloatArray = self.scene.path.poses_at(np.array([self.anchor]))[0]
         return poses
 
     def region(self) -> Region:
@@ -95,7 +98,11 @@ def prove(
         question = Question(scene, direction, anchor, shape, settings)
         pose = scene.path.poses_at(np.array([last_scan]))[0]
         ways = miss_ways(shape, misser, pose, question.region(), settings.min_size)
+        if misser.scan_height <= scene.detector(direction).scan_height:
+            ways["below"] = []  # nothing stands above one plane and below a lower one
         for way, options in ways.items():
+            if not options and way in IMPOSSIBLE:
+                continue
             outcome = _rule_out(question, way, options)
             if isinstance(outcome, Witness):
                 return Proof("sat", "", outcome)
@@ -134,18 +141,16 @@ def _why(
     others = [label for label in solution.core if label != "misser"]
     if not others:
         return {
-            "below": f"the {detector_side}'s scan plane ({detector.scan_height:.3f} m) is no lower",
-            "outside": "it sees all round",
-            "beyond": "the robot's way lies within it",
-            "near": "it has none",
-            "between": f"nothing {settings.min_size:g} m wide fits between them where the robot "
-            "could meet it",
+            "below": f"and the {detector_side}'s ({detector.scan_height:.3f} m) is no lower",
+            "beyond": "and the robot's way lies within it",
+            "between": f"and nothing {settings.min_size:g} m wide fits between them where the "
+            "robot could meet it",
         }[way]
     words = {
         "bounds": f"the obstacle's size ({settings.min_size:g}-{settings.max_size:g} m)",
         "robot": f"room for the robot to stop ({scene.robot.braking_distance:.2f} m)",
         "path": "being in the robot's way",
-        "detector": f"being read by the {detector_side} ({detector.describe()})",
+        "detector": f"the {detector_side}'s reading",
     }
     named = [words[label] if label in words else _constraint(settings, label) for label in others]
     return "ruled out by " + " and ".join(named)
@@ -160,15 +165,17 @@ def _sentence(scene: Scene, direction: Direction, anchor: float, reasons: dict[s
     detector_side, misser_side = SIDE[direction]
     misser = scene.misser(direction)
     phrases = {
-        "below": f"lower than its scan plane ({misser.scan_height:.3f} m)",
+        "below": f"below its scan plane ({misser.scan_height:.3f} m)",
         "outside": f"outside its field of view ({misser.min_angle:g} to {misser.max_angle:g} rad)",
         "beyond": f"beyond its range ({misser.range_max:g} m)",
         "near": f"nearer than its minimum range ({misser.range_min:g} m)",
-        "between": f"between two of its beams ({math.degrees(misser.angle_increment):.3f} deg apart)",
+        "between": f"between two of its beams ({math.degrees(misser.angle_increment):.3f} deg "
+        "apart)",
     }
     where = "at the start pose" if anchor == 0.0 else f"at t = {anchor:.2f} s"
+    detector = scene.detector(direction)
     return (
-        f"no obstacle discriminates {where}: the {misser_side} misses what the {detector_side} "
-        "reads only when it is "
-        + "; ".join(f"{phrases[way]}: {why}" for way, why in reasons.items())
+        f"no obstacle discriminates {where}. The {misser_side} ({misser.describe()}) misses "
+        f"what the {detector_side} ({detector.describe()}) reads only "
+        + "; ".join(f"{phrases[way]}, {why}" for way, why in reasons.items())
     )

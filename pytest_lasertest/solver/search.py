@@ -1,10 +1,12 @@
-"""The search for witnesses: anchors on the nominal path, one Z3 query each, refined by ray casts.
+"""The search for witnesses: anchors on the nominal path, seeds at each, one Z3 query per seed.
 
-For one direction of a pair, the detector's scan instants along the nominal path are anchors. At
-each, a query asks for an obstacle the detector's scan reads while the misser's scans miss it,
-clear of the robot until it could stand, and in its way after. The exact ray cast judges each
-model; a misser scan that still sees the obstacle becomes one more constraint (refinement), so
-the model converges on a placement that every misser scan up to the anchor misses.
+For one direction of a pair, some of the detector's scan instants along the nominal path are
+anchors. At each, a seed point (`seeds.py`) fixes how the detector reads the obstacle and how each
+misser scan misses it, so a query is a linear program: an obstacle holding the seed, clear of the
+robot until it could stand, kept by the seed's half-planes from every misser scan up to the seed's
+`until`, with the largest margin and then the smallest size. The exact ray cast judges each model;
+a misser scan that still sees the obstacle joins the program (refinement), so the model converges
+on a placement every misser scan up to `until` misses.
 """
 
 from __future__ import annotations
@@ -35,7 +37,7 @@ from pytest_lasertest.solver.encoding import (
     linear,
     number,
 )
-from pytest_lasertest.solver.seeds import Seed, misses
+from pytest_lasertest.solver.seeds import Seed, hides_below, misses
 from pytest_lasertest.solver.user import formula_text
 from pytest_lasertest.spec.constraints import Constraint
 
@@ -124,7 +126,7 @@ class Query:
         """One formula per misser scan that must miss the obstacle: the seed's way of missing."""
         scene, direction = self.scene, self.direction
         misser = scene.misser(direction)
-        if misser.scan_height > scene.detector(direction).scan_height:
+        if hides_below(scene, direction):
             return {"misser": f"(<= {linear(H=1.0, M=1.0)} {number(misser.scan_height)})"}
         cases = misses(scene, direction, np.array(times), np.array(self.seed.point))
         return {
@@ -202,7 +204,7 @@ def bounds(settings: SearchSettings) -> str:
 
 
 def needed_room(shape: ObstacleShape, settings: SearchSettings) -> float:
-    """How much room around a seed the smallest obstacle of this shape needs, with its margin (m)."""
+    """The room around a seed the smallest obstacle of this shape needs, margin included (m)."""
     spread = 1.0 if shape.shape == "cylinder" else math.sqrt(2.0)
     return spread * (settings.min_size / 2.0 + TARGET_MARGIN)
 
@@ -224,17 +226,24 @@ def _separating(piece: FloatArray, point: FloatArray, shape: ObstacleShape) -> H
 
 
 def anchor_times(scene: Scene, direction: Direction, spacing: float) -> list[float]:
-    """Detector scan instants on legs, with room to brake on the leg, `spacing` m apart."""
-    path = scene.path
-    times = scan_times(scene.detector(direction).update_rate, path.duration)
+    """Detector scan instants on legs, with room to brake on the leg, `spacing` m apart.
+
+    Each is moved to the detector's last scan before the misser's next one, where the misser's
+    picture is stalest: a slower misser shows its difference there.
+    """
+    path, detector = scene.path, scene.detector(direction)
+    rate, misser_rate = detector.update_rate, scene.misser(direction).update_rate
     anchors: list[float] = []
-    for time in times:
-        segment = path.segment_at(float(time))
-        if not isinstance(segment, Leg) or scene.standstill(float(time)) > path.end_of(segment):
-            continue
+    for time in scan_times(rate, path.duration):
         if anchors and (time - anchors[-1]) * path.speed < spacing - 1e-9:
             continue
-        anchors.append(float(time))
+        following = (math.floor(time * misser_rate + 1e-9) + 1) / misser_rate
+        stalest = max(float(time), (math.ceil(following * rate - 1e-9) - 1) / rate)
+        for anchor in dict.fromkeys((stalest, float(time))):
+            segment = path.segment_at(anchor)
+            if isinstance(segment, Leg) and scene.standstill(anchor) <= path.end_of(segment):
+                anchors.append(anchor)
+                break
     return anchors
 
 

@@ -27,13 +27,15 @@ from pytest_lasertest.sensor import FULL_TURN, LaserProfile
 from pytest_lasertest.solver.encoding import HalfPlane
 
 SEED_STEP = 0.05  # m between seed points along a beam
-MAX_SEED_BEAMS = 120  # detector beams a ranking looks along, evenly spread
 RANKING_SCANS = 48  # misser scans a first ranking looks at, evenly spread
-FINALISTS = 24  # points whose every misser scan is checked before the final order
+FINALISTS = 8  # points whose every misser scan is checked before the final order
 DEPTH = 0.02  # m, how deep inside the robot's later way a seed lies
 LEAD_STEP = 0.25  # m, leads closer than this count as equal when ranking
+SPREAD = 0.25  # m between finalists, so that witnesses kept apart still find seeds
 ROOM_CAP = 0.1  # m, room beyond this buys nothing more
 NEAR_SIDES = 16  # the polygon inside the minimum-range circle
+# How far the misser's scan plane must stand above the detector's for an obstacle to fit between.
+LOW_WINDOW = 0.02  # m
 
 GAP, OUTSIDE, BEYOND, NEAR = range(4)
 IntArray = npt.NDArray[np.intp]
@@ -54,6 +56,10 @@ def seeds(scene: Scene, direction: Direction, anchor: float, needed: float) -> l
     """Points with at least `needed` m of room before every misser scan up to the anchor, best
     first: the longest lead, then the most room."""
     points = _candidates(scene, direction, anchor, needed)
+    misser = scene.misser(direction)
+    # Most points fail at once: the misser's scans at the start and just before the anchor.
+    first_and_last = np.array([0.0, scan_times(misser.update_rate, anchor)[-1]])
+    points = points[rooms_at(scene, direction, first_and_last, points)[0].min(axis=0) >= needed]
     footprint = scene.robot.footprint_array()
     last = contact_times(scene.path, footprint, points) - scene.robot.braking_distance / (
         scene.path.speed
@@ -63,7 +69,6 @@ def seeds(scene: Scene, direction: Direction, anchor: float, needed: float) -> l
     points, last = points[keep], last[keep]
     if not len(points):
         return []
-    misser = scene.misser(direction)
     times = scan_times(misser.update_rate, float(last.max()))
     coarse = times[np.unique(np.linspace(0, len(times) - 1, RANKING_SCANS).round().astype(int))]
     ranked = _rank(scene, direction, anchor, points, last, coarse, needed)
@@ -80,20 +85,34 @@ def _candidates(scene: Scene, direction: Direction, anchor: float, needed: float
     """Points on the detector's beams, in range, deep in the robot's later way and clear of it
     until it stands, shape (P, 2)."""
     detector = scene.detector(direction)
-    pose = scene.path.poses_at(np.array([anchor]))
-    origins, directions = detector.rays(pose)
-    stride = math.ceil(detector.beam_count / MAX_SEED_BEAMS)
-    beams = directions[0, ::stride]
-    steps = np.arange(detector.range_min + needed, detector.range_max - DEPTH, SEED_STEP)
-    points = (origins[0, 0] + steps[np.newaxis, :, np.newaxis] * beams[:, np.newaxis, :]).reshape(
-        -1, 2
-    )
+    origins, directions = detector.rays(scene.path.poses_at(np.array([anchor])))
     footprint, stands = scene.robot.footprint_array(), scene.standstill(anchor)
     after = swept_polygons(scene.path, footprint, stands, scene.path.duration)
     before = swept_polygons(scene.path, footprint, 0.0, stands)
+    corners = np.vstack(after)
+    near = max(detector.range_min + needed, 0.0)
+    points = _along(origins[0, 0], directions[0], near, detector.range_max - DEPTH, corners)
     deep = np.max([-_outside_by(piece, points) for piece in after], axis=0) >= DEPTH
     clear = np.min([_outside_by(piece, points) for piece in before], axis=0) >= needed
-    return points[deep & clear]
+    chosen: FloatArray = points[deep & clear]
+    return chosen
+
+
+def _along(
+    origin: FloatArray, directions: FloatArray, near: float, far: float, corners: FloatArray
+) -> FloatArray:
+    """Points every SEED_STEP along each beam (N, 2) where it crosses the box around `corners`."""
+    low, high = corners.min(axis=0), corners.max(axis=0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ends = np.stack([(low - origin) / directions, (high - origin) / directions])
+    enter = np.nanmax(np.where(np.isnan(ends[0]), -np.inf, ends.min(axis=0)), axis=1)
+    leave = np.nanmin(np.where(np.isnan(ends[0]), np.inf, ends.max(axis=0)), axis=1)
+    enter, leave = np.maximum(enter, near), np.minimum(leave, far)
+    chunks = []
+    for beam in np.flatnonzero(enter <= leave):
+        steps = np.arange(enter[beam], leave[beam] + 1e-9, SEED_STEP)
+        chunks.append(origin + steps[:, np.newaxis] * directions[beam])
+    return np.vstack(chunks) if chunks else np.empty((0, 2))
 
 
 def _outside_by(polygon: FloatArray, points: FloatArray) -> FloatArray:
@@ -122,9 +141,19 @@ def _rank(
     room = np.where(counted & ~short, rooms, np.inf).min(axis=0)
     valid = np.flatnonzero(until >= anchor)
     lead = np.round((until[valid] - anchor) * scene.path.speed / LEAD_STEP)
-    order = np.lexsort((np.arange(len(valid)), -np.minimum(room[valid], ROOM_CAP), -lead))
-    best: IntArray = valid[order[:FINALISTS]]
-    return best
+    order = valid[np.lexsort((np.arange(len(valid)), -np.minimum(room[valid], ROOM_CAP), -lead))]
+    return _spread(points, order)
+
+
+def _spread(points: FloatArray, order: IntArray) -> IntArray:
+    """The first FINALISTS points of `order` that lie SPREAD apart from each other."""
+    kept: list[int] = []
+    for index in order:
+        if all(np.max(np.abs(points[index] - points[other])) >= SPREAD for other in kept):
+            kept.append(int(index))
+            if len(kept) == FINALISTS:
+                break
+    return np.array(kept, dtype=np.intp)
 
 
 def _seed(
@@ -164,9 +193,9 @@ def rooms_at(
     Unlimited room when the misser's scan plane is higher than the detector's: an obstacle
     between the two planes is missed by every scan.
     """
-    misser, detector = scene.misser(direction), scene.detector(direction)
+    misser = scene.misser(direction)
     shape = (len(times), len(points))
-    if misser.scan_height > detector.scan_height:
+    if hides_below(scene, direction):
         return np.full(shape, np.inf), np.zeros(shape, np.intp), np.zeros(shape, np.intp)
     origin, start = _scanners(misser, scene.path.poses_at(times))
     offsets = points[np.newaxis, :, :] - origin[:, np.newaxis, :]
@@ -185,6 +214,12 @@ def rooms_at(
     )
     way: IntArray = rooms.argmax(axis=0)
     return rooms.max(axis=0), way, gap
+
+
+def hides_below(scene: Scene, direction: Direction) -> bool:
+    """Whether an obstacle fits between the detector's scan plane and the misser's higher one."""
+    gap = scene.misser(direction).scan_height - scene.detector(direction).scan_height
+    return gap >= LOW_WINDOW
 
 
 def _scanners(profile: LaserProfile, poses: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -224,7 +259,7 @@ def misses(
     """For each misser scan at `times`, the half-planes that make it miss the way it misses
     `point` best; empty when the misser's scan plane is above the detector's."""
     misser = scene.misser(direction)
-    if misser.scan_height > scene.detector(direction).scan_height:
+    if hides_below(scene, direction):
         return [() for _ in times]
     _rooms, ways, gaps = rooms_at(scene, direction, times, point[np.newaxis, :])
     origins, starts = _scanners(misser, scene.path.poses_at(times))
