@@ -25,6 +25,7 @@ from pytest_lasertest.path import contact_times, scan_times, swept_polygons
 from pytest_lasertest.placement import Direction, Scene
 from pytest_lasertest.sensor import FULL_TURN, LaserProfile
 from pytest_lasertest.solver.encoding import HalfPlane
+from pytest_lasertest.solver.scans import NEAR_SIDES
 
 SEED_STEP = 0.05  # m between seed points along a beam
 RANKING_SCANS = 48  # misser scans a first ranking looks at, evenly spread
@@ -33,7 +34,6 @@ DEPTH = 0.02  # m, how deep inside the robot's later way a seed lies
 LEAD_STEP = 0.25  # m, leads closer than this count as equal when ranking
 SPREAD = 0.25  # m between finalists, so that witnesses kept apart still find seeds
 ROOM_CAP = 0.1  # m, room beyond this buys nothing more
-NEAR_SIDES = 16  # the polygon inside the minimum-range circle
 # How far the misser's scan plane must stand above the detector's for an obstacle to fit between.
 LOW_WINDOW = 0.02  # m
 
