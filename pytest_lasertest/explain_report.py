@@ -17,7 +17,9 @@ import numpy as np
 from pytest_lasertest.path import scan_times
 from pytest_lasertest.placement import (
     EXACT_WITHIN,
+    ROLES,
     PairPlan,
+    Scanner,
     Scene,
     Witness,
     miss_margins,
@@ -25,7 +27,6 @@ from pytest_lasertest.placement import (
 )
 from pytest_lasertest.plan_report import describe_obstacle, obstacle_json
 
-Scanner = Literal["baseline", "candidate"]
 Role = Literal["detector", "misser"]
 
 
@@ -69,18 +70,13 @@ def explain_scans(scene: Scene, witness: Witness) -> tuple[ScanExplanation, ...]
     placement = witness.placement
     direction = placement.direction
     misser = scene.misser(direction)
-    detector_name, misser_name = _names(direction == "candidate-misses")
+    detector_name, misser_name = ROLES[direction]
     until = scan_times(misser.update_rate, max(placement.until, placement.anchor))[-1]
     return (
         explain_scan(scene, witness, detector_name, "detector", placement.anchor),
         explain_scan(scene, witness, misser_name, "misser", placement.anchor),
         explain_scan(scene, witness, misser_name, "misser", float(until)),
     )
-
-
-def _names(candidate_misses: bool) -> tuple[Scanner, Scanner]:
-    """The detector's and the misser's names."""
-    return ("baseline", "candidate") if candidate_misses else ("candidate", "baseline")
 
 
 def explain_scan(

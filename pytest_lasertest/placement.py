@@ -36,6 +36,12 @@ from pytest_lasertest.sensor import LaserProfile
 
 Direction = Literal["candidate-misses", "baseline-misses"]
 DIRECTIONS: tuple[Direction, ...] = ("candidate-misses", "baseline-misses")
+Scanner = Literal["baseline", "candidate"]
+# Which scanner must read the obstacle and which must miss it, in each direction.
+ROLES: dict[Direction, tuple[Scanner, Scanner]] = {
+    "candidate-misses": ("baseline", "candidate"),
+    "baseline-misses": ("candidate", "baseline"),
+}
 # PyBullet reports ray hits up to about 1 mm outside exact shapes: keep well clear of every edge.
 REQUIRED_MARGIN = 0.005  # m
 # Beams further than this from the obstacle get a lower bound on their clearance, not its exact

@@ -9,10 +9,10 @@ The JSON is a stable contract (documented in the README):
 from __future__ import annotations
 
 from pytest_lasertest.geometry import Box, Obstacle
-from pytest_lasertest.placement import PairPlan, Status, Witness
+from pytest_lasertest.placement import ROLES, PairPlan, Status, Witness
 from pytest_lasertest.sensor import LaserProfile
 
-DETECTED_BY = {"candidate-misses": "baseline", "baseline-misses": "candidate"}
+DETECTED_BY = {direction: detector for direction, (detector, _) in ROLES.items()}
 
 
 def pair_status(plan: PairPlan) -> Status:
@@ -103,7 +103,7 @@ def plan_text(plan: PairPlan) -> str:
 def _lead(witness: Witness) -> str:
     """How long the difference lasts on the approach."""
     lead = witness.verification.lead
-    misser = "candidate" if witness.placement.direction == "candidate-misses" else "baseline"
+    _, misser = ROLES[witness.placement.direction]
     if witness.verification.late:
         return f"the {misser} misses it for {lead:.2f} m, until too late to stop"
     return f"the {misser} misses it for {lead:.2f} m more"

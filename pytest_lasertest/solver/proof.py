@@ -16,7 +16,15 @@ import numpy as np
 
 from pytest_lasertest.geometry import FloatArray
 from pytest_lasertest.path import scan_times, swept_polygons
-from pytest_lasertest.placement import Direction, Placement, Scene, Status, Witness, verify
+from pytest_lasertest.placement import (
+    ROLES,
+    Direction,
+    Placement,
+    Scene,
+    Status,
+    Witness,
+    verify,
+)
 from pytest_lasertest.solver.backend import Solution, solve
 from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of
 from pytest_lasertest.solver.scans import Region, detected, miss_ways, reaches
@@ -27,7 +35,6 @@ from pytest_lasertest.solver.search import (
     obstacle_of,
 )
 
-SIDE = {"candidate-misses": ("baseline", "candidate"), "baseline-misses": ("candidate", "baseline")}
 PROOF_VARIABLES = (*VARIABLES, "QX", "QY")
 # Ways of missing that a scanner's own figures rule out, not worth a word.
 IMPOSSIBLE = ("outside", "near")
@@ -92,11 +99,11 @@ def prove(
 ) -> Proof:
     """Whether any placement of these shapes discriminates at the anchor, with the reasons."""
     misser = scene.misser(direction)
-    last_scan = float(scan_times(misser.update_rate, anchor)[-1])
+    last_scan = scan_times(misser.update_rate, anchor)[-1:]
+    pose = scene.path.poses_at(last_scan)[0]
     reasons: dict[str, str] = {}
     for shape in shapes:
         question = Question(scene, direction, anchor, shape, settings)
-        pose = scene.path.poses_at(np.array([last_scan]))[0]
         ways = miss_ways(shape, misser, pose, question.region(), settings.min_size)
         if misser.scan_height <= scene.detector(direction).scan_height:
             ways["below"] = []  # nothing stands above one plane and below a lower one
@@ -136,7 +143,7 @@ def _rule_out(question: Question, way: str, options: list[str]) -> Solution | Wi
 def _why(
     scene: Scene, direction: Direction, settings: SearchSettings, way: str, solution: Solution
 ) -> str:
-    detector_side, _ = SIDE[direction]
+    detector_side, _ = ROLES[direction]
     detector = scene.detector(direction)
     others = [label for label in solution.core if label != "misser"]
     if not others:
@@ -162,7 +169,7 @@ def _constraint(settings: SearchSettings, label: str) -> str:
 
 
 def _sentence(scene: Scene, direction: Direction, anchor: float, reasons: dict[str, str]) -> str:
-    detector_side, misser_side = SIDE[direction]
+    detector_side, misser_side = ROLES[direction]
     misser = scene.misser(direction)
     phrases = {
         "below": f"below its scan plane ({misser.scan_height:.3f} m)",
