@@ -103,8 +103,9 @@ class Verification:
         return self.margin >= required
 
 
-def verify(scene: Scene, placement: Placement) -> Verification:
-    """Judge a placement with exact ray casts and swept footprints."""
+def verify(scene: Scene, placement: Placement, last: float | None = None) -> Verification:
+    """Judge a placement with exact ray casts and swept footprints; `last` is the obstacle's
+    `last_chance`, if the caller knows it already."""
     obstacle, direction = placement.obstacle, placement.direction
     misser = scene.misser(direction)
     anchor_pose = scene.path.poses_at(np.array([placement.anchor]))
@@ -113,7 +114,7 @@ def verify(scene: Scene, placement: Placement) -> Verification:
     concealments = miss_margins(misser, scene.path.poses_at(times), obstacle)
     stands = scene.standstill(placement.anchor)
     after = swept_polygons(scene.path, scene.robot.footprint_array(), stands, scene.path.duration)
-    last = last_chance(scene, obstacle)
+    last = last_chance(scene, obstacle) if last is None else last
     return Verification(
         detection=detection,
         concealment=float(np.min(concealments)),
@@ -136,18 +137,30 @@ def last_chance(scene: Scene, obstacle: Obstacle, tolerance: float = 1e-4) -> fl
     """The latest instant from which braking still stops clear of the obstacle (s).
 
     The path's duration when the obstacle is never in the way. The clearance only shrinks as the
-    braking starts later, so a bisection to `tolerance` seconds finds it.
+    braking starts later, so the instant is bracketed to `tolerance` seconds, stepping from the
+    clear side. On a leg the clearance falls no faster than the robot drives (exactly that fast
+    when the obstacle is straight ahead), linearly or convexly, so the first step, clearance /
+    speed, and then secants through two clear instants land on the instant or short of it. A
+    step that overshoots, as at a turn, where the robot sweeps a whole disc at once, or that
+    finds the clearance flat, is followed by a bisection.
     """
     low, high = 0.0, scene.path.duration
-    if stopping_clearance(scene, obstacle, high) > 0.0:
-        return high
-    if stopping_clearance(scene, obstacle, low) <= 0.0:
-        return low
+    above, below = (stopping_clearance(scene, obstacle, t) for t in (low, high))
+    if below > 0.0 or above <= 0.0:
+        return high if below > 0.0 else low
+    slope, guided = scene.path.speed, True
     while high - low > tolerance:
-        middle = 0.5 * (low + high)
-        low, high = (
-            (middle, high) if stopping_clearance(scene, obstacle, middle) > 0.0 else (low, middle)
-        )
+        width = high - low
+        step = above / slope if guided else width / 2.0
+        middle = low + min(max(step, tolerance / 2.0), width - tolerance / 2.0)
+        clearance = stopping_clearance(scene, obstacle, middle)
+        if clearance <= 0.0:
+            high, guided = middle, not guided
+        elif clearance < above:
+            slope, guided = (above - clearance) / (middle - low), True
+            low, above = middle, clearance
+        else:  # flat: beside the obstacle, no slope to follow
+            low, guided = middle, False
     return low
 
 
@@ -173,33 +186,36 @@ def miss_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -
     """How surely each scan misses the obstacle, shape (T,), m; negative: some beam reads it.
 
     Only the part of a beam from range_min to range_max can give a reading in range (nearer, REP
-    117 reports -inf, which a costmap drops), so a beam misses by that part's clearance. Margins
-    beyond EXACT_WITHIN may be reported as a lower bound.
+    117 reports -inf, which a costmap drops), so a beam misses by that part's clearance. Only
+    beams that come near the obstacle are cast; a scan whose beams all pass EXACT_WITHIN clear
+    gets EXACT_WITHIN, a lower bound.
     """
-    origins, directions = profile.rays(poses)
-    flat_origins, flat_directions = origins.reshape(-1, 2), directions.reshape(-1, 2)
-    start, end = profile.range_min, profile.range_max
-    clear = _rough_clearances(flat_origins, flat_directions, start, end, obstacle)
-    near = np.flatnonzero(clear < EXACT_WITHIN)
-    clear[near] = _clearances(flat_origins[near], flat_directions[near], start, end, obstacle)
-    nearest = clear.reshape(origins.shape[:2]).min(axis=1)
+    scans, beams = profile.beams_near(poses, (obstacle.x, obstacle.y), _reach(obstacle))
+    origins = profile.origins(poses)[scans]
+    directions = profile.beam_directions(poses, scans, beams)
+    count = len(scans)
+    clear = segment_clearances(
+        origins,
+        directions,
+        np.full(count, profile.range_min),
+        np.full(count, profile.range_max),
+        obstacle,
+    )
+    nearest = np.full(len(poses), EXACT_WITHIN)
+    np.minimum.at(nearest, scans, clear)
     lower: FloatArray = np.maximum(nearest, profile.scan_height - obstacle.height)
     return lower
 
 
-def _rough_clearances(
-    origins: FloatArray, directions: FloatArray, start: float, end: float, obstacle: Obstacle
-) -> FloatArray:
-    """A cheap lower bound on each segment's clearance, from the obstacle's bounding circle.
+def _reach(obstacle: Obstacle) -> float:
+    """How near a beam must pass the obstacle's centre to come within EXACT_WITHIN of it (m).
 
-    A box's clearance is in its own metric, max(|x'| - a, |y'| - b), which the Euclidean distance
-    to the circle through its corners overstates by at most a factor sqrt(2).
+    A box's clearance is in its own metric, max(|x'| - a, |y'| - b), which is at least the
+    Euclidean distance to its corners' circle divided by sqrt(2).
     """
     if isinstance(obstacle, Cylinder):
-        return _clearances(origins, directions, start, end, obstacle)
-    circle = Cylinder(obstacle.x, obstacle.y, math.hypot(obstacle.length, obstacle.width) / 2, 1.0)
-    rough: FloatArray = _clearances(origins, directions, start, end, circle) / math.sqrt(2.0)
-    return rough
+        return obstacle.radius + EXACT_WITHIN
+    return math.hypot(obstacle.length, obstacle.width) / 2.0 + math.sqrt(2.0) * EXACT_WITHIN
 
 
 def readings(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
-from pytest_lasertest.geometry import FloatArray, Pose3D, wrap_angle
+from pytest_lasertest.geometry import FloatArray, IntArray, Pose3D, wrap_angle
 
 FULL_TURN = 2.0 * math.pi  # rad
 # Gazebo descriptions write a full turn as 6.28319, a little more than 2 pi.
@@ -127,6 +127,35 @@ class LaserProfile:
         origin_x = poses[:, 0] + cos * mount_x - sin * mount_y
         origin_y = poses[:, 1] + sin * mount_x + cos * mount_y
         return np.stack([origin_x, origin_y], axis=-1)
+
+    def beams_near(
+        self, poses: FloatArray, point: tuple[float, float], reach: float
+    ) -> tuple[IntArray, IntArray]:
+        """The beams of the scans at robot poses (T, 3) that, as whole rays, may pass within
+        `reach` m of `point`: a scan index and a beam index each, shape (K,).
+
+        Every other beam passes further away: a ray turned by more than asin(reach / d) from the
+        direction to a point d away misses a circle of radius `reach` around it.
+        """
+        angles = self.beam_angles_in_base()
+        order = np.argsort(angles, kind="stable")
+        ring = np.concatenate([angles[order], angles[order] + FULL_TURN])
+        offsets = np.asarray(point) - self.origins(poses)
+        distance = np.hypot(offsets[:, 0], offsets[:, 1])
+        with np.errstate(divide="ignore"):
+            half = np.where(distance > reach, np.arcsin(np.minimum(reach / distance, 1.0)), np.pi)
+        low = wrap_angle(np.arctan2(offsets[:, 1], offsets[:, 0]) - poses[:, 2] - half)
+        first = np.searchsorted(ring, low, "left")
+        counts = np.minimum(np.searchsorted(ring, low + 2.0 * half, "right") - first, len(angles))
+        scans = np.repeat(np.arange(len(poses)), counts)
+        within = np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
+        beams: IntArray = order[(first[scans] + within) % len(angles)]
+        return scans, beams
+
+    def beam_directions(self, poses: FloatArray, scans: IntArray, beams: IntArray) -> FloatArray:
+        """World unit vectors of beam `beams[k]` of the scan at `poses[scans[k]]`, shape (K, 2)."""
+        angles = poses[scans, 2] + self.beam_angles_in_base()[beams]
+        return np.column_stack([np.cos(angles), np.sin(angles)])
 
     def sector_in_base(self) -> tuple[float, float]:
         """The directions the beams span in the base frame: (start, extent), rad, counter-clockwise.

@@ -210,3 +210,38 @@ def test_a_mount_rotation_is_a_proper_rotation_composed_as_urdf_does() -> None:
         np.testing.assert_allclose(rotation @ rotation.T, np.eye(3), atol=1e-12)
         assert np.linalg.det(rotation) == pytest.approx(1.0)
         np.testing.assert_allclose(rotation, rz @ ry @ rx, atol=1e-12)
+
+
+def random_scanner(rng: np.random.Generator) -> Any:
+    """A scanner with a random field of view (up to a full turn), beam count and mount."""
+    low = float(rng.uniform(-math.pi, 0.0))
+    width = float(rng.choice([rng.uniform(0.5, 2.0 * math.pi), 2.0 * math.pi]))
+    roll = float(rng.choice([0.0, math.pi]))
+    mount = Pose3D(
+        (float(rng.uniform(-0.4, 0.4)), float(rng.uniform(-0.2, 0.2)), 0.3),
+        (roll, 0.0, float(rng.uniform(-math.pi, math.pi))),
+    )
+    samples = int(rng.choice([1, 2, 16, 361, 1440]))
+    return profile(samples=samples, min_angle=low, max_angle=low + width, pose=mount)
+
+
+def test_the_beams_near_a_point_are_every_beam_that_passes_within_reach_of_it() -> None:
+    rng = np.random.default_rng(3)
+    for _ in range(40):
+        scanner = random_scanner(rng)
+        poses = np.column_stack([rng.uniform(-3, 3, (6, 2)), rng.uniform(-4, 4, 6)])
+        point, reach = (float(rng.uniform(-3, 3)), float(rng.uniform(-3, 3))), 0.3
+        origins, directions = scanner.rays(poses)
+        offsets = np.asarray(point) - origins
+        along = np.maximum(np.einsum("tnk,tnk->tn", offsets, directions), 0.0)
+        gap = np.hypot(*(offsets - along[..., np.newaxis] * directions).transpose(2, 0, 1))
+
+        scans, beams = scanner.beams_near(poses, point, reach)
+
+        near = set(zip(*np.nonzero(gap <= reach), strict=True))
+        listed = set(zip(scans.tolist(), beams.tolist(), strict=True))
+        assert near <= listed
+        assert all(gap[t, k] <= reach + 1e-9 for t, k in listed)
+        np.testing.assert_allclose(
+            scanner.beam_directions(poses, scans, beams), directions[scans, beams], atol=1e-12
+        )

@@ -9,20 +9,31 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pytest_lasertest.geometry import Box, Cylinder, Point2D, Pose2D, Pose3D
+from pytest_lasertest.geometry import (
+    Box,
+    Cylinder,
+    Point2D,
+    Pose2D,
+    Pose3D,
+    segment_clearances,
+)
 from pytest_lasertest.path import nominal_path
 from pytest_lasertest.placement import (
+    EXACT_WITHIN,
     REQUIRED_MARGIN,
     Direction,
     Placement,
     Scene,
+    last_chance,
+    miss_margins,
     readings,
+    stopping_clearance,
     verify,
 )
 from pytest_lasertest.solver.encoding import ObstacleShape
 from pytest_lasertest.solver.plan import plan_direction
 from pytest_lasertest.solver.search import Found, Query, SearchSettings, needed_room
-from pytest_lasertest.solver.seeds import seeds
+from pytest_lasertest.solver.seeds import candidates, seeds
 from pytest_lasertest.spec import load_pairs_file
 from pytest_lasertest.spec.constraints import Constraint, parse_formula
 from pytest_lasertest.spec.errors import Location
@@ -152,7 +163,8 @@ def test_a_direction_is_planned_alike_every_time() -> None:
 
 def _query(direction: Direction, anchor: float, shape: ObstacleShape) -> Query:
     size = scene("size")
-    (seed, *_) = seeds(size, direction, anchor, needed_room(shape, SETTINGS))
+    needed = needed_room(shape, SETTINGS)
+    (seed, *_) = seeds(size, direction, candidates(size, direction, anchor, needed), needed)
     return Query(size, direction, anchor, seed, shape, SETTINGS)
 
 
@@ -188,6 +200,52 @@ def test_the_verifier_rejects_an_obstacle_the_robot_cannot_stop_for() -> None:
     at_the_bumper = Box(x=0.6, y=0.0, yaw=0.0, length=0.1, width=0.1, height=1.0)
     verification = verify(scene("size"), Placement(at_the_bumper, "candidate-misses", 0.0, 0.0))
     assert verification.clearance < 0
+
+
+def test_a_scans_miss_margin_is_its_nearest_beams_clearance_up_to_the_exact_limit() -> None:
+    rng = np.random.default_rng(5)
+    scanner = scene("size").baseline
+    poses = np.column_stack([rng.uniform(0, 4, 30), rng.uniform(-1, 1, 30), rng.uniform(-1, 1, 30)])
+    for obstacle in (
+        Cylinder(x=3.0, y=0.3, radius=0.12, height=1.0),
+        Box(x=2.5, y=-0.4, yaw=0.6, length=0.3, width=0.1, height=1.0),
+    ):
+        origins, directions = scanner.rays(poses)
+        count = origins.shape[0] * origins.shape[1]
+        every_beam = segment_clearances(
+            origins.reshape(-1, 2),
+            directions.reshape(-1, 2),
+            np.full(count, scanner.range_min),
+            np.full(count, scanner.range_max),
+            obstacle,
+        ).reshape(origins.shape[:2])
+
+        margins = miss_margins(scanner, poses, obstacle)
+
+        np.testing.assert_allclose(
+            margins, np.minimum(every_beam.min(axis=1), EXACT_WITHIN), rtol=0, atol=1e-12
+        )
+
+
+@pytest.mark.parametrize("route", [[(10.0, 0.0)], [(2.0, 0.0), (2.0, 6.0)]])
+def test_the_last_chance_is_the_latest_instant_braking_still_stops_clear(
+    route: list[tuple[float, float]],
+) -> None:
+    path = nominal_path(Pose2D(0.0, 0.0, 0.0), tuple(Point2D(*p) for p in route), 0.5, 1.0)
+    size = dataclasses.replace(scene("size"), path=path)
+    rng = np.random.default_rng(7)
+    in_the_way = 0
+    for _ in range(40):
+        x, y, _ = path.poses_at(rng.uniform(0.0, path.duration, 1))[0] + rng.uniform(-0.7, 0.7, 3)
+        obstacle = Box(float(x), float(y), float(rng.uniform(0, 1.5)), 0.2, 0.1, 1.0)
+
+        last = last_chance(size, obstacle)
+
+        if 0.0 < last < path.duration:
+            in_the_way += 1
+            assert stopping_clearance(size, obstacle, last) > 0.0
+            assert stopping_clearance(size, obstacle, last + 1e-4) <= 0.0
+    assert in_the_way >= 20
 
 
 def test_an_obstacle_lower_than_the_scan_plane_is_not_read() -> None:

@@ -24,8 +24,8 @@ VARIABLES = ("X", "Y", "S", "H", "M")
 
 def number(value: float) -> str:
     """A real as an SMT-LIB decimal (no exponent, negatives as `(- v)`)."""
-    text = np.format_float_positional(round(abs(value), 5), unique=True, trim="0")
-    text = text if "." in text else f"{text}.0"
+    text = f"{abs(value):.5f}".rstrip("0")
+    text = f"{text}0" if text.endswith(".") else text
     return f"(- {text})" if value < 0 else text
 
 

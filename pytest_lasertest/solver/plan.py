@@ -16,6 +16,7 @@ from pytest_lasertest.placement import (
     Witness,
 )
 from pytest_lasertest.sensor import same_geometry
+from pytest_lasertest.solver.backend import Workspace
 from pytest_lasertest.solver.encoding import ObstacleShape
 from pytest_lasertest.solver.proof import prove
 from pytest_lasertest.solver.search import (
@@ -26,7 +27,7 @@ from pytest_lasertest.solver.search import (
     needed_room,
     shapes_for,
 )
-from pytest_lasertest.solver.seeds import Seed, seeds
+from pytest_lasertest.solver.seeds import Candidates, Seed, candidates, seeds
 from pytest_lasertest.spec.pairs import Pair, PairsFile
 
 SEEDS_PER_ANCHOR = 3  # seeds tried per anchor and shape before the search moves on
@@ -40,7 +41,9 @@ class DirectionSearch:
         self.direction = direction
         self.settings = settings
         self.witnesses: list[Witness] = []
+        self._candidates: dict[float, Candidates] = {}
         self._seeds: dict[tuple[float, float], list[Seed]] = {}
+        self._workspace = Workspace()
 
     def run(self) -> DirectionPlan:
         """Up to `settings.witnesses` witnesses, each from the next anchor that yields one."""
@@ -84,7 +87,7 @@ class DirectionSearch:
         for shape in shapes_for(index, float(pose[2])):
             for seed in self._fresh_seeds(anchor, shape)[:SEEDS_PER_ANCHOR]:
                 query = Query(self.scene, self.direction, anchor, seed, shape, self.settings, apart)
-                result = query.run()
+                result = query.run(self._workspace)
                 if isinstance(result, Found):
                     x, y, yaw = (float(value) for value in pose)
                     return Witness(index, result.placement, result.verification, (x, y, yaw))
@@ -94,8 +97,11 @@ class DirectionSearch:
         """The anchor's seeds for this shape, without those near a witness already found."""
         needed = needed_room(shape, self.settings)
         key = (anchor, needed)
+        if anchor not in self._candidates:
+            least = min(needed_room(shape, self.settings) for shape in shapes_for(0, 0.0))
+            self._candidates[anchor] = candidates(self.scene, self.direction, anchor, least)
         if key not in self._seeds:
-            self._seeds[key] = seeds(self.scene, self.direction, anchor, needed)
+            self._seeds[key] = seeds(self.scene, self.direction, self._candidates[anchor], needed)
         gap = self.settings.diversity
         taken = [witness.placement.obstacle for witness in self.witnesses]
         return [

@@ -28,7 +28,7 @@ from pytest_lasertest.placement import (
     last_chance,
     verify,
 )
-from pytest_lasertest.solver.backend import RLIMIT, Solution, solve
+from pytest_lasertest.solver.backend import RLIMIT, Solution, Workspace
 from pytest_lasertest.solver.encoding import (
     VARIABLES,
     HalfPlane,
@@ -37,8 +37,9 @@ from pytest_lasertest.solver.encoding import (
     linear,
     number,
 )
-from pytest_lasertest.solver.seeds import Seed, hides_below, misses
+from pytest_lasertest.solver.seeds import Seed
 from pytest_lasertest.solver.user import formula_text
+from pytest_lasertest.solver.ways import hides_below, misses
 from pytest_lasertest.spec.constraints import Constraint
 
 # The solver aims a little above the required margin so that rounding to floats cannot undo it.
@@ -86,19 +87,23 @@ class Query:
     settings: SearchSettings
     apart_from: tuple[Obstacle, ...] = ()
 
-    def run(self) -> Found | Solution:
-        """A verified witness, or Z3's unsat / unknown answer."""
+    def run(self, workspace: Workspace | None = None) -> Found | Solution:
+        """A verified witness, or Z3's unsat / unknown answer; asked in `workspace` if given."""
+        workspace = Workspace() if workspace is None else workspace
         times = list(self.seed.tight)
         fixed = {**self.scene_blocks(), **self.user_blocks()}
         for _ in range(MAX_REFINEMENTS):
             blocks = {**fixed, **self.misser_blocks(times)}
-            solution = solve(VARIABLES, blocks, ("M", "-S"), self.settings.rlimit)
+            solution = workspace.solve(
+                VARIABLES, blocks, ("M", "-S"), self.settings.rlimit, explained=False
+            )
             if solution.verdict != "sat":
                 return solution
             obstacle = obstacle_of(self.shape, solution)
-            until = min(self.seed.until, last_chance(self.scene, obstacle))
-            placement = Placement(obstacle, self.direction, self.anchor, max(until, self.anchor))
-            verification = verify(self.scene, placement)
+            last = last_chance(self.scene, obstacle)
+            until = max(min(self.seed.until, last), self.anchor)
+            placement = Placement(obstacle, self.direction, self.anchor, until)
+            verification = verify(self.scene, placement, last)
             if verification.holds():
                 return Found(placement, verification)
             times = self._refine(times, verification, placement)
