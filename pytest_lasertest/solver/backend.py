@@ -75,9 +75,9 @@ class Workspace:
         without.
         """
         context = self._context
-        declarations = "".join(f"(declare-const {name} Real)" for name in variables)
         # Optimising is much dearer than deciding: a plain solver when nothing is to be maximised.
         optimizer = make_optimizer(rlimit, context) if maximize else make_solver(rlimit, context)
+        declarations = "".join(f"(declare-const {name} Real)" for name in variables)
         asserted = "".join(f"(assert {text})" for text in blocks.values())
         formulas = z3.parse_smt2_string(declarations + asserted, ctx=context)
         for label, formula in zip(blocks, formulas, strict=True):
@@ -88,15 +88,18 @@ class Workspace:
         for term in maximize:
             variable = z3.Real(term.lstrip("-"), context)
             optimizer.maximize(-variable if term.startswith("-") else variable)
-        verdict = optimizer.check()
-        if verdict == z3.sat:
-            model = optimizer.model()
-            values = {name: _value(model, z3.Real(name, context)) for name in variables}
-            return Solution("sat", values)
-        if verdict == z3.unsat:
-            core = tuple(sorted(str(label) for label in optimizer.unsat_core()))
-            return Solution("unsat", {}, core)
-        return Solution("unknown", {}, reason=optimizer.reason_unknown())
+        return _answer(optimizer, [z3.Real(name, context) for name in variables])
+
+
+def _answer(optimizer: z3.Solver | z3.Optimize, variables: list[z3.ArithRef]) -> Solution:
+    """Check, and put Z3's answer in a Solution."""
+    verdict = optimizer.check()
+    if verdict == z3.sat:
+        model = optimizer.model()
+        return Solution("sat", {str(variable): _value(model, variable) for variable in variables})
+    if verdict == z3.unsat:
+        return Solution("unsat", {}, tuple(sorted(str(label) for label in optimizer.unsat_core())))
+    return Solution("unknown", {}, reason=optimizer.reason_unknown())
 
 
 def solve(
