@@ -51,9 +51,9 @@ class Workspace:
     """A Z3 context that a run of related queries shares.
 
     Making a context can cost more than solving a small linear program (from 0.5 to 5 ms, as
-    measured here), so a search asks all its queries in one. Z3's answers in a context may depend
-    on what it was asked before; a search asks the same queries in the same order every time,
-    so its answers stay the same.
+    measured here), so a search, or a proof, asks all its queries in one. Z3's answers in a
+    context may depend on what it was asked before; a search or a proof asks the same queries in
+    the same order every time, so its answers stay the same.
     """
 
     def __init__(self) -> None:
@@ -102,17 +102,6 @@ def _answer(optimizer: z3.Solver | z3.Optimize, variables: list[z3.ArithRef]) ->
     return Solution("unknown", {}, reason=optimizer.reason_unknown())
 
 
-def solve(
-    variables: Sequence[str],
-    blocks: Mapping[str, str],
-    maximize: Sequence[str] = (),
-    rlimit: int = RLIMIT,
-    explained: bool = True,
-) -> Solution:
-    """`Workspace.solve` in a context of its own: the answer depends on this query alone."""
-    return Workspace().solve(variables, blocks, maximize, rlimit, explained)
-
-
 def _value(model: z3.ModelRef, variable: z3.ArithRef) -> float:
     value = model.eval(variable, model_completion=True)
     if z3.is_rational_value(value):
@@ -123,7 +112,7 @@ def _value(model: z3.ModelRef, variable: z3.ArithRef) -> float:
 
 def self_test() -> str:
     """Solve a tiny problem under the resource limit; describe the Z3 that did it."""
-    solution = solve(("x",), {"bounds": "(and (> x 1.0) (< x 2.0))"})
+    solution = Workspace().solve(("x",), {"bounds": "(and (> x 1.0) (< x 2.0))"})
     if solution.verdict != "sat":
         raise RuntimeError(f"Z3 answered {solution.verdict} to 1 < x < 2, which is satisfiable")
     return f"z3 {z3.get_version_string()}: solved a test problem under rlimit {RLIMIT}"

@@ -25,7 +25,7 @@ from pytest_lasertest.placement import (
     Witness,
     verify,
 )
-from pytest_lasertest.solver.backend import Solution, solve
+from pytest_lasertest.solver.backend import Solution, Workspace
 from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of
 from pytest_lasertest.solver.scans import Region, detected, miss_ways, reaches
 from pytest_lasertest.solver.search import (
@@ -102,6 +102,7 @@ def prove(
     last_scan = scan_times(misser.update_rate, anchor)[-1:]
     pose = scene.path.poses_at(last_scan)[0]
     reasons: dict[str, str] = {}
+    workspace = Workspace()
     for shape in shapes:
         question = Question(scene, direction, anchor, shape, settings)
         ways = miss_ways(shape, misser, pose, question.region(), settings.min_size)
@@ -110,7 +111,7 @@ def prove(
         for way, options in ways.items():
             if not options and way in IMPOSSIBLE:
                 continue
-            outcome = _rule_out(question, way, options)
+            outcome = _rule_out(question, way, options, workspace)
             if isinstance(outcome, Witness):
                 return Proof("sat", "", outcome)
             if outcome.verdict == "unknown":
@@ -121,14 +122,16 @@ def prove(
     return Proof("unsat", _sentence(scene, direction, anchor, reasons))
 
 
-def _rule_out(question: Question, way: str, options: list[str]) -> Solution | Witness:
+def _rule_out(
+    question: Question, way: str, options: list[str], workspace: Workspace
+) -> Solution | Witness:
     if not options:
         return Solution("unsat", {}, ("misser",))
     solution = Solution("unknown", {})
     for relaxed in (True, False):
         blocks = {**question.blocks(relaxed), "misser": any_of(options)}
         variables = PROOF_VARIABLES if relaxed else VARIABLES
-        solution = solve(variables, blocks, (), question.settings.rlimit)
+        solution = workspace.solve(variables, blocks, (), question.settings.rlimit)
         if solution.verdict != "sat":
             return solution
     obstacle = obstacle_of(question.shape, solution)
