@@ -95,23 +95,27 @@ class DirectionSearch:
 
     def _fresh_seeds(self, anchor: float, shape: ObstacleShape) -> list[Seed]:
         """The anchor's seeds for this shape, without those near a witness already found."""
-        needed = needed_room(shape, self.settings)
-        key = (anchor, needed)
-        if anchor not in self._candidates:
-            least = min(needed_room(shape, self.settings) for shape in shapes_for(0, 0.0))
-            self._candidates[anchor] = candidates(self.scene, self.direction, anchor, least)
-        if key not in self._seeds:
-            self._seeds[key] = seeds(self.scene, self.direction, self._candidates[anchor], needed)
         gap = self.settings.diversity
         taken = [witness.placement.obstacle for witness in self.witnesses]
         return [
             seed
-            for seed in self._seeds[key]
+            for seed in self._seeds_at(anchor, shape)
             if all(
                 max(abs(seed.point[0] - other.x), abs(seed.point[1] - other.y)) >= gap
                 for other in taken
             )
         ]
+
+    def _seeds_at(self, anchor: float, shape: ObstacleShape) -> list[Seed]:
+        """The anchor's seeds for this shape, found once; the candidates, once for all shapes."""
+        if anchor not in self._candidates:
+            least = min(needed_room(each, self.settings) for each in shapes_for(0, 0.0))
+            self._candidates[anchor] = candidates(self.scene, self.direction, anchor, least)
+        needed = needed_room(shape, self.settings)
+        if (anchor, needed) not in self._seeds:
+            near = self._candidates[anchor]
+            self._seeds[anchor, needed] = seeds(self.scene, self.direction, near, needed)
+        return self._seeds[anchor, needed]
 
     def _without_witness(self, anchors: list[float]) -> DirectionPlan:
         heading = float(self.scene.path.poses_at(np.array([anchors[0]]))[0, 2])

@@ -71,7 +71,7 @@ def candidates(scene: Scene, direction: Direction, anchor: float, needed: float)
     points = points[np.max([-_outside_by(piece, points) for piece in after], axis=0) >= DEPTH]
     room = np.minimum(
         np.hypot(*(points - origin).T) - detector.range_min,
-        _room_until_stand(scene, direction, anchor, points),
+        _room_up_to_anchor(scene, direction, anchor, points),
     )
     braking = scene.robot.braking_distance / scene.path.speed
     last = np.minimum(contact_times(scene.path, footprint, points) - braking, scene.path.duration)
@@ -83,7 +83,7 @@ def candidates(scene: Scene, direction: Direction, anchor: float, needed: float)
     return Candidates(anchor, points, room[keep], last, coarse, rooms)
 
 
-def _room_until_stand(
+def _room_up_to_anchor(
     scene: Scene, direction: Direction, anchor: float, points: FloatArray
 ) -> FloatArray:
     """Room (P,) m, to the robot until it stands and to the misser's scans at the start and just
