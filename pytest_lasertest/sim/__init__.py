@@ -1,4 +1,4 @@
-"""The only package that imports pybullet, in one module: `client`."""
+"""The simulator. Only `client` imports pybullet; `lidar` turns its ray casts into LaserScans."""
 
 from __future__ import annotations
 

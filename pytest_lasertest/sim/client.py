@@ -1,18 +1,37 @@
-"""PyBullet physics clients in DIRECT mode: one per use, always disconnected, never global."""
+"""PyBullet physics clients in DIRECT mode: one per use, always disconnected, never global.
+
+The only module that imports pybullet. `PhysicsWorld` is one client holding the ground, the
+Husky and the static obstacles; everything else in `sim/` speaks numpy to it.
+"""
 
 from __future__ import annotations
 
 import os
 import sys
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
-from types import ModuleType
+from types import ModuleType, TracebackType
+
+import numpy as np
+
+from pytest_lasertest.geometry import Box, FloatArray, Obstacle, Pose2D
+
+# rayTestBatch refuses more rays than this in one call.
+MAX_RAYS_PER_CALL = 16384
+# Collision groups: rays look for the world group only, so they pass through the robot itself.
+WORLD_GROUP, ROBOT_GROUP, ALL_GROUPS = 1, 2, 0xFFFF
+HUSKY_URDF = "husky/husky.urdf"
+# pybullet_data's Husky: its four wheel joints, left then right.
+LEFT_WHEELS, RIGHT_WHEELS = (1, 3), (0, 2)
+DROP_HEIGHT = 0.15  # m: the Husky is placed this high and settles onto its wheels
+GRAVITY = 9.81  # m/s^2
+WHEEL_TORQUE = 1000.0  # N m, more than the wheels ever need: the velocity target rules
 
 
 def load_pybullet() -> ModuleType:
     """The pybullet module, imported on first use without its build-time banner."""
     if "pybullet" not in sys.modules:
-        with _banner_silenced():
+        with _c_output_silenced():
             import pybullet  # noqa: F401
     return sys.modules["pybullet"]
 
@@ -30,6 +49,168 @@ def direct_client() -> Iterator[int]:
         pybullet.disconnect(physicsClientId=client)
 
 
+class PhysicsWorld:
+    """The ground, pybullet_data's Husky (fixed links merged) and static obstacles, in one DIRECT
+    client stepped at a fixed time step. Use it as a context manager: it disconnects on exit."""
+
+    def __init__(self, start: Pose2D, obstacles: Sequence[Obstacle], time_step: float) -> None:
+        self._pybullet = load_pybullet()
+        self._client: int = self._pybullet.connect(self._pybullet.DIRECT)
+        if self._client < 0:
+            raise RuntimeError("pybullet could not start a DIRECT physics client")
+        try:
+            self._setup(time_step)
+            self.robot = self._load_husky(start)
+            self.obstacles = tuple(self._add_obstacle(obstacle) for obstacle in obstacles)
+        except BaseException:
+            self.close()
+            raise
+
+    def __enter__(self) -> PhysicsWorld:
+        return self
+
+    def __exit__(
+        self,
+        kind: type[BaseException] | None,
+        error: BaseException | None,
+        trace: TracebackType | None,
+    ) -> None:
+        self.close()
+
+    @property
+    def closed(self) -> bool:
+        """Whether the client has been disconnected."""
+        return self._client < 0
+
+    def close(self) -> None:
+        """Disconnect the client; closing twice is harmless."""
+        if self._client >= 0:
+            self._pybullet.disconnect(physicsClientId=self._client)
+            self._client = -1
+
+    def step(self, left: float, right: float) -> None:
+        """Drive the left and right wheels at these speeds (rad/s) for one time step."""
+        pybullet = self._pybullet
+        pybullet.setJointMotorControlArray(
+            self.robot,
+            [*LEFT_WHEELS, *RIGHT_WHEELS],
+            pybullet.VELOCITY_CONTROL,
+            targetVelocities=[left] * len(LEFT_WHEELS) + [right] * len(RIGHT_WHEELS),
+            forces=[WHEEL_TORQUE] * (len(LEFT_WHEELS) + len(RIGHT_WHEELS)),
+            physicsClientId=self._client,
+        )
+        pybullet.stepSimulation(physicsClientId=self._client)
+
+    def base_pose(self) -> FloatArray:
+        """The robot's base_footprint in the world plane, [x, y, yaw] (m, m, rad)."""
+        pybullet, client = self._pybullet, self._client
+        # PyBullet reports the base's centre of mass; the URDF frame sits where the inertial
+        # frame says, relative to it.
+        com, orientation = pybullet.getBasePositionAndOrientation(
+            self.robot, physicsClientId=client
+        )
+        inertial = pybullet.getDynamicsInfo(self.robot, -1, physicsClientId=client)[3:5]
+        position, orientation = pybullet.multiplyTransforms(
+            com, orientation, *pybullet.invertTransform(*inertial)
+        )
+        yaw = pybullet.getEulerFromQuaternion(orientation)[2]
+        return np.array([position[0], position[1], yaw])
+
+    def cast(self, starts: FloatArray, ends: FloatArray) -> FloatArray:
+        """Where each ray from `starts` to `ends` (both (R, 3), m) first meets the world, as a
+        fraction of its length, shape (R,); 1.0 where it meets nothing. The robot is transparent."""
+        fractions = [
+            self._pybullet.rayTestBatch(
+                starts[first : first + MAX_RAYS_PER_CALL].tolist(),
+                ends[first : first + MAX_RAYS_PER_CALL].tolist(),
+                collisionFilterMask=WORLD_GROUP,
+                physicsClientId=self._client,
+            )
+            for first in range(0, len(starts), MAX_RAYS_PER_CALL)
+        ]
+        hits = [hit for batch in fractions for hit in batch]
+        return np.array([hit[2] if hit[0] >= 0 else 1.0 for hit in hits], dtype=float)
+
+    def contacts(self) -> int:
+        """How many contact points the robot has with obstacles after the last step."""
+        return sum(
+            len(self._pybullet.getContactPoints(self.robot, body, physicsClientId=self._client))
+            for body in self.obstacles
+        )
+
+    def clearance(self, within: float) -> float:
+        """The least distance between the robot and any obstacle (m), up to `within`."""
+        distances = [
+            point[8]
+            for body in self.obstacles
+            for point in self._pybullet.getClosestPoints(
+                self.robot, body, within, physicsClientId=self._client
+            )
+        ]
+        return min(distances, default=within)
+
+    def _setup(self, time_step: float) -> None:
+        pybullet = self._pybullet
+        import pybullet_data
+
+        pybullet.setAdditionalSearchPath(pybullet_data.getDataPath(), physicsClientId=self._client)
+        pybullet.setGravity(0.0, 0.0, -GRAVITY, physicsClientId=self._client)
+        pybullet.setPhysicsEngineParameter(
+            fixedTimeStep=time_step, deterministicOverlappingPairs=1, physicsClientId=self._client
+        )
+        ground = pybullet.loadURDF("plane.urdf", physicsClientId=self._client)
+        self._join(ground, WORLD_GROUP)
+
+    def _load_husky(self, start: Pose2D) -> int:
+        pybullet = self._pybullet
+        orientation = pybullet.getQuaternionFromEuler((0.0, 0.0, start.yaw))
+        with _c_output_silenced():
+            robot: int = pybullet.loadURDF(
+                HUSKY_URDF,
+                (start.x, start.y, DROP_HEIGHT),
+                orientation,
+                flags=pybullet.URDF_MERGE_FIXED_LINKS,
+                physicsClientId=self._client,
+            )
+        self._join(robot, ROBOT_GROUP)
+        return robot
+
+    def _add_obstacle(self, obstacle: Obstacle) -> int:
+        """A static body of the obstacle's exact shape, standing on the ground."""
+        pybullet = self._pybullet
+        if isinstance(obstacle, Box):
+            half = (obstacle.length / 2.0, obstacle.width / 2.0, obstacle.height / 2.0)
+            shape = pybullet.createCollisionShape(
+                pybullet.GEOM_BOX, halfExtents=half, physicsClientId=self._client
+            )
+        else:
+            shape = pybullet.createCollisionShape(
+                pybullet.GEOM_CYLINDER,
+                radius=obstacle.radius,
+                height=obstacle.height,
+                physicsClientId=self._client,
+            )
+        yaw = obstacle.yaw if isinstance(obstacle, Box) else 0.0
+        body: int = pybullet.createMultiBody(
+            baseMass=0.0,
+            baseCollisionShapeIndex=shape,
+            basePosition=(obstacle.x, obstacle.y, obstacle.height / 2.0),
+            baseOrientation=pybullet.getQuaternionFromEuler((0.0, 0.0, yaw)),
+            physicsClientId=self._client,
+        )
+        self._join(body, WORLD_GROUP)
+        return body
+
+    def _join(self, body: int, group: int) -> None:
+        """Put every link of a body in a collision group that collides with all groups."""
+        pybullet = self._pybullet
+        links = range(-1, pybullet.getNumJoints(body, physicsClientId=self._client))
+        for link in links:
+            pybullet.setCollisionFilterGroupMask(
+                body, link, group, ALL_GROUPS, physicsClientId=self._client
+            )
+
+
 def self_test() -> str:
     """Start a DIRECT client, step it once, disconnect; describe the pybullet that did it."""
     pybullet = load_pybullet()
@@ -40,14 +221,18 @@ def self_test() -> str:
 
 
 @contextmanager
-def _banner_silenced() -> Iterator[None]:
-    # pybullet's C code prints its build time at import straight to file descriptor 2.
+def _c_output_silenced() -> Iterator[None]:
+    # pybullet's C code prints its build time at import, and warnings while it loads a URDF,
+    # straight to file descriptors 1 and 2.
+    sys.stdout.flush()
     sys.stderr.flush()
-    saved = os.dup(2)
+    saved = [os.dup(1), os.dup(2)]
     try:
         with open(os.devnull, "w") as devnull:
+            os.dup2(devnull.fileno(), 1)
             os.dup2(devnull.fileno(), 2)
             yield
     finally:
-        os.dup2(saved, 2)
-        os.close(saved)
+        for descriptor, copy in zip((1, 2), saved, strict=True):
+            os.dup2(copy, descriptor)
+            os.close(copy)

@@ -1,0 +1,157 @@
+"""The PyBullet world and its simulated laser: exact obstacles, a transparent robot, REP 117."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from pytest_lasertest.geometry import (
+    Box,
+    Cylinder,
+    Obstacle,
+    Pose2D,
+    Pose3D,
+    segment_clearances,
+)
+from pytest_lasertest.sensor import GaussianNoise, LaserProfile
+from pytest_lasertest.sim.client import PhysicsWorld
+from pytest_lasertest.sim.lidar import noisy, planar_ranges, ranges_from_fractions, scan_rays
+from tests.conftest import profile
+
+HUSKY_LASER = Pose3D((0.337, 0.0, 0.308), (math.pi, 0.0, 0.0))
+SCANNER = profile(min_angle=-2.3, max_angle=2.3, range_max=8.0, pose=HUSKY_LASER)
+TIME_STEP = 0.01  # s
+# PyBullet reports hits up to about 1 mm outside exact shapes, further along oblique rays.
+EDGE = 0.005  # m: beams nearer than this to an obstacle's edge, or its top, are not compared
+
+
+def pybullet_ranges(world: PhysicsWorld, scanner: LaserProfile, pose: np.ndarray) -> np.ndarray:
+    starts, ends = scan_rays(scanner, pose)
+    return ranges_from_fractions(scanner, world.cast(starts, ends))
+
+
+def random_scene(rng: np.random.Generator) -> tuple[Obstacle, ...]:
+    """Six boxes and cylinders 1.2-8 m from the origin, none with its top within EDGE of the
+    scan plane."""
+    obstacles: list[Obstacle] = []
+    while len(obstacles) < 6:
+        x, y = (float(value) for value in rng.uniform(-6.0, 6.0, 2))
+        height = float(rng.uniform(0.1, 1.0))
+        if math.hypot(x, y) < 1.2 or abs(height - SCANNER.scan_height) < EDGE:
+            continue
+        if rng.integers(2):
+            obstacles.append(Cylinder(x, y, float(rng.uniform(0.02, 0.4)), height))
+        else:
+            length, width = (float(side) for side in rng.uniform(0.05, 1.0, 2))
+            obstacles.append(Box(x, y, float(rng.uniform(0.0, 3.0)), length, width, height))
+    return tuple(obstacles)
+
+
+def test_pybullet_and_the_flat_ray_cast_read_the_same_ranges_beam_for_beam() -> None:
+    rng = np.random.default_rng(1)
+    compared = 0
+    for _ in range(20):
+        obstacles = random_scene(rng)
+        with PhysicsWorld(
+            Pose2D(0.0, 0.0, float(rng.uniform(-3, 3))), obstacles, TIME_STEP
+        ) as world:
+            pose = world.base_pose()
+            simulated = pybullet_ranges(world, SCANNER, pose)
+        flat = planar_ranges(SCANNER, pose, obstacles)
+
+        origins, directions = SCANNER.rays(pose[np.newaxis, :])
+        count = SCANNER.beam_count
+        standing = [o for o in obstacles if o.height > SCANNER.scan_height]
+        clearance = np.min(
+            [
+                segment_clearances(
+                    origins[0], directions[0], np.zeros(count), np.full(count, 8.0), o
+                )
+                for o in standing
+            ],
+            axis=0,
+        )
+        sure = np.abs(clearance) >= EDGE
+        np.testing.assert_array_equal(np.isfinite(simulated[sure]), np.isfinite(flat[sure]))
+        read = sure & np.isfinite(flat)
+        np.testing.assert_allclose(simulated[read], flat[read], rtol=0, atol=EDGE)
+        compared += int(read.sum())
+    assert compared > 1000
+
+
+def test_the_robot_is_transparent_to_its_own_scanner_and_the_ground_is_not_read() -> None:
+    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (), TIME_STEP) as world:
+        for _ in range(50):
+            world.step(0.0, 0.0)
+        ranges = pybullet_ranges(world, SCANNER, world.base_pose())
+    assert np.all(ranges == np.inf)
+
+
+def test_nearer_than_range_min_reads_minus_inf_and_beyond_range_max_plus_inf() -> None:
+    near = Box(0.6, 0.0, 0.0, 0.1, 0.6, 1.0)  # 0.26 m from the scanner, range_min 0.5 m
+    far = Cylinder(-9.5, 0.0, 0.3, 1.0)  # behind, beyond 8 m
+    scanner = profile(
+        min_angle=-math.pi, max_angle=math.pi, range_min=0.5, range_max=8.0, pose=HUSKY_LASER
+    )
+    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (near, far), TIME_STEP) as world:
+        ranges = pybullet_ranges(world, scanner, np.zeros(3))
+    ahead = np.abs(scanner.beam_angles_in_base()) < 0.2
+    behind = np.abs(scanner.beam_angles_in_base()) > math.pi - 0.02
+    assert np.all(ranges[ahead] == -np.inf)
+    assert np.all(ranges[behind] == np.inf)
+
+
+def test_noise_touches_only_in_range_readings_clamped_to_the_range_and_repeats_by_seed() -> None:
+    scanner = profile(range_min=0.1, range_max=10.0, noise=GaussianNoise(0.0, 0.5))
+    ranges = np.array([np.inf, -np.inf, 0.2, 5.0, 9.9])
+
+    first = noisy(scanner, ranges, np.random.default_rng(7))
+    again = noisy(scanner, ranges, np.random.default_rng(7))
+
+    np.testing.assert_array_equal(first, again)
+    assert first[0] == np.inf
+    assert first[1] == -np.inf
+    assert np.all((first[2:] >= 0.1) & (first[2:] <= 10.0))
+    assert np.any(first[2:] != ranges[2:])
+
+
+def test_obstacles_are_static_the_robot_cannot_push_them() -> None:
+    box = Box(1.5, 0.0, 0.0, 0.3, 1.0, 0.5)
+    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (box,), TIME_STEP) as world:
+        touched = 0
+        for _ in range(300):
+            world.step(8.0, 8.0)
+            touched += world.contacts()
+        reached = world.base_pose()
+        clearance = world.clearance(within=1.0)
+    assert touched > 0
+    assert clearance < 0.001
+    # Pushing with all its torque for 3 s, the Husky's bumper (0.505 m ahead of its base) is
+    # still at the box's near face.
+    assert reached[0] + 0.505 == pytest.approx(box.x - box.length / 2, abs=0.005)
+
+
+def _resident_bytes() -> int:
+    return int(Path("/proc/self/statm").read_text().split()[1]) * 4096
+
+
+def _worlds(count: int) -> PhysicsWorld:
+    obstacles = (Box(2.0, 0.0, 0.3, 0.2, 0.2, 1.0), Cylinder(3.0, 1.0, 0.1, 1.0))
+    for _ in range(count):
+        with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), obstacles, TIME_STEP) as world:
+            world.step(1.0, 1.0)
+    return world
+
+
+def test_worlds_release_their_clients_and_memory() -> None:
+    # PyBullet keeps what it read of the Husky's files after the first worlds (about 50 MB).
+    _worlds(100)
+    before = _resident_bytes()
+
+    last = _worlds(200)
+
+    assert last.closed
+    assert _resident_bytes() - before < 10 * 2**20
