@@ -18,6 +18,8 @@ class Robot:
     footprint: tuple[tuple[float, float], ...]  # m, convex polygon, counter-clockwise, padded
     max_linear_velocity: float  # m/s
     max_linear_acceleration: float  # m/s^2, also its braking deceleration
+    max_angular_velocity: float  # rad/s
+    max_angular_acceleration: float  # rad/s^2
     nominal_speed: float  # m/s, cruising speed along the nominal path
     nominal_turn_rate: float  # rad/s, turning in place at waypoints
     reaction_time: float  # s, from a scan to the first braking command

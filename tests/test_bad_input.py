@@ -405,6 +405,7 @@ footprint: [[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]
 max_linear_velocity: 0.8
 max_linear_acceleration: 1.5
 max_angular_velocity: 1.2
+max_angular_acceleration: 3.0
 """
 
 ROBOT_CASES = {
@@ -435,6 +436,13 @@ ROBOT_CASES = {
         5,
         "max_linear_acceleration",
         "0 m/s^2 cannot be how hard it brakes",
+    ),
+    "a robot that cannot start turning": (
+        "max_angular_acceleration: 3.0",
+        "max_angular_acceleration: 0",
+        7,
+        "max_angular_acceleration",
+        "0 rad/s^2 cannot be how fast it starts turning",
     ),
     "a missing turn rate": (
         "max_angular_velocity: 1.2\n",

@@ -6,6 +6,7 @@ Husky and the static obstacles; everything else in `sim/` speaks numpy to it.
 
 from __future__ import annotations
 
+import math
 import os
 import sys
 from collections.abc import Iterator, Sequence
@@ -23,9 +24,15 @@ WORLD_GROUP, ROBOT_GROUP, ALL_GROUPS = 1, 2, 0xFFFF
 HUSKY_URDF = "husky/husky.urdf"
 # pybullet_data's Husky: its four wheel joints, left then right.
 LEFT_WHEELS, RIGHT_WHEELS = (1, 3), (0, 2)
-DROP_HEIGHT = 0.15  # m: the Husky is placed this high and settles onto its wheels
+# The Husky's base_footprint rests this close to the ground on its wheels: placed there, it
+# starts at rest instead of falling onto them.
+DROP_HEIGHT = 0.0005  # m
 GRAVITY = 9.81  # m/s^2
 WHEEL_TORQUE = 1000.0  # N m, more than the wheels ever need: the velocity target rules
+# A skid-steer robot turns by sliding its tyres sideways. With PyBullet's isotropic friction they
+# grip so hard that the turn rate jumps with the wheel speeds (0.4 rad/s for 0.25 commanded, 2.3
+# for 1.0); friction along the axle scaled by this factor lets them slide and the rate follow.
+TYRE_SIDEWAYS_FRICTION = 0.05
 
 
 def load_pybullet() -> ModuleType:
@@ -116,6 +123,13 @@ class PhysicsWorld:
         yaw = pybullet.getEulerFromQuaternion(orientation)[2]
         return np.array([position[0], position[1], yaw])
 
+    def base_twist(self) -> tuple[float, float]:
+        """The base's forward speed (m/s) and turn rate (rad/s)."""
+        pybullet = self._pybullet
+        linear, angular = pybullet.getBaseVelocity(self.robot, physicsClientId=self._client)
+        yaw = self.base_pose()[2]
+        return linear[0] * math.cos(yaw) + linear[1] * math.sin(yaw), angular[2]
+
     def cast(self, starts: FloatArray, ends: FloatArray) -> FloatArray:
         """Where each ray from `starts` to `ends` (both (R, 3), m) first meets the world, as a
         fraction of its length, shape (R,); 1.0 where it meets nothing. The robot is transparent."""
@@ -173,6 +187,14 @@ class PhysicsWorld:
                 physicsClientId=self._client,
             )
         self._join(robot, ROBOT_GROUP)
+        for wheel in (*LEFT_WHEELS, *RIGHT_WHEELS):
+            # The wheels turn about their own y axis: that is the axle.
+            pybullet.changeDynamics(
+                robot,
+                wheel,
+                anisotropicFriction=(1.0, TYRE_SIDEWAYS_FRICTION, 1.0),
+                physicsClientId=self._client,
+            )
         return robot
 
     def _add_obstacle(self, obstacle: Obstacle) -> int:

@@ -17,6 +17,7 @@ REQUIRED_KEYS = (
     "max_linear_velocity",
     "max_linear_acceleration",
     "max_angular_velocity",
+    "max_angular_acceleration",
 )
 OPTIONAL_KEYS = ("footprint_padding", "nominal_speed", "nominal_turn_rate", "reaction_time")
 ROBOT_KEYS = REQUIRED_KEYS + OPTIONAL_KEYS
@@ -37,6 +38,7 @@ def load_robot_file(path: Path) -> Robot:
         if key not in fields:
             raise root.missing(key, f"a robot file needs {', '.join(REQUIRED_KEYS)}")
     top_speed = _positive(fields["max_linear_velocity"], "m/s", "its top speed")
+    top_turn_rate = _positive(fields["max_angular_velocity"], "rad/s", "its top turn rate")
     padding = fields["footprint_padding"].number("m") if "footprint_padding" in fields else 0.0
     return Robot(
         name=fields["name"].text(),
@@ -46,13 +48,13 @@ def load_robot_file(path: Path) -> Robot:
         max_linear_acceleration=_positive(
             fields["max_linear_acceleration"], "m/s^2", "how hard it brakes"
         ),
+        max_angular_velocity=top_turn_rate,
+        max_angular_acceleration=_positive(
+            fields["max_angular_acceleration"], "rad/s^2", "how fast it starts turning"
+        ),
         nominal_speed=_optional(fields, "nominal_speed", "m/s", "its cruising speed", top_speed),
         nominal_turn_rate=_optional(
-            fields,
-            "nominal_turn_rate",
-            "rad/s",
-            "how fast it turns in place",
-            _positive(fields["max_angular_velocity"], "rad/s", "its top turn rate"),
+            fields, "nominal_turn_rate", "rad/s", "how fast it turns in place", top_turn_rate
         ),
         reaction_time=_optional(
             fields, "reaction_time", "s", "its reaction time", DEFAULT_REACTION_TIME, zero=True

@@ -1,0 +1,90 @@
+"""The drive: a commanded twist, limited as the Husky's velocity controller limits it, turned
+into wheel speeds that reach it on PyBullet's skid-steer contact.
+
+The Husky steers by driving its left and right wheels at different speeds and letting the tyres
+slide sideways. Wheel speeds from the URDF's geometry miss the commanded twist (8 % too fast
+straight ahead; turns slip), so the drive uses an effective radius and track, measured in
+PyBullet, and closes a slow integral loop on the measured twist to remove what remains, as the
+robot's own odometry-fed controller would.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from pytest_lasertest.robot import Robot
+
+
+@dataclass(frozen=True)
+class Twist:
+    """A base velocity in the robot's frame."""
+
+    linear: float  # m/s, forward
+    angular: float  # rad/s, counter-clockwise
+
+
+@dataclass(frozen=True)
+class WheelGeometry:
+    """How wheel speeds turn into a twist on the simulated ground."""
+
+    radius: float  # m, effective
+    track: float  # m, effective distance between the left and right wheels
+    gain: float  # 1/s, how fast the twist loop removes a steady error
+
+
+# Measured with pybullet_data's Husky at time steps of 0.005-0.02 s: 0.5 m/s straight ahead needs
+# the URDF's 0.1651 m wheel to count as 1.0808 times larger, and turning in place with the tyres'
+# sideways friction of `client.TYRE_SIDEWAYS_FRICTION` behaves as a track of 0.62 m.
+HUSKY_WHEELS = WheelGeometry(radius=0.1651 * 1.0808, track=0.62, gain=3.0)
+
+
+class Drive:
+    """The twist the wheels are driven toward, ramped within the robot's limits, and the
+    integral of what the measured twist lacked."""
+
+    def __init__(self, robot: Robot, wheels: WheelGeometry = HUSKY_WHEELS) -> None:
+        self.robot = robot
+        self.wheels = wheels
+        self.target = Twist(0.0, 0.0)
+        self._correction = Twist(0.0, 0.0)
+
+    def wheel_speeds(self, command: Twist, measured: Twist, step: float) -> tuple[float, float]:
+        """Left and right wheel speeds (rad/s) for the next `step` seconds."""
+        self.target = self._ramped(command, step)
+        # Only a steady error is the loop's to remove: while the target ramps, the robot lags it
+        # by design, and integrating that lag would overshoot.
+        gain = self.wheels.gain * step if self.target == self._limited(command) else 0.0
+        self._correction = Twist(
+            self._correction.linear + gain * (self.target.linear - measured.linear),
+            self._correction.angular + gain * (self.target.angular - measured.angular),
+        )
+        linear = self.target.linear + self._correction.linear
+        angular = self.target.angular + self._correction.angular
+        half_track = self.wheels.track / 2.0
+        return (
+            (linear - angular * half_track) / self.wheels.radius,
+            (linear + angular * half_track) / self.wheels.radius,
+        )
+
+    def _limited(self, command: Twist) -> Twist:
+        """The command within the robot's top speeds."""
+        robot = self.robot
+        return Twist(
+            _clamp(command.linear, robot.max_linear_velocity),
+            _clamp(command.angular, robot.max_angular_velocity),
+        )
+
+    def _ramped(self, command: Twist, step: float) -> Twist:
+        """The target moved toward the limited command by at most one step of the robot's
+        accelerations."""
+        robot, limited = self.robot, self._limited(command)
+        return Twist(
+            self.target.linear
+            + _clamp(limited.linear - self.target.linear, robot.max_linear_acceleration * step),
+            self.target.angular
+            + _clamp(limited.angular - self.target.angular, robot.max_angular_acceleration * step),
+        )
+
+
+def _clamp(value: float, limit: float) -> float:
+    return max(-limit, min(limit, value))
