@@ -133,7 +133,7 @@ class PhysicsWorld:
     def cast(self, starts: FloatArray, ends: FloatArray) -> FloatArray:
         """Where each ray from `starts` to `ends` (both (R, 3), m) first meets the world, as a
         fraction of its length, shape (R,); 1.0 where it meets nothing. The robot is transparent."""
-        fractions = [
+        batches = [
             self._pybullet.rayTestBatch(
                 starts[first : first + MAX_RAYS_PER_CALL].tolist(),
                 ends[first : first + MAX_RAYS_PER_CALL].tolist(),
@@ -142,7 +142,7 @@ class PhysicsWorld:
             )
             for first in range(0, len(starts), MAX_RAYS_PER_CALL)
         ]
-        hits = [hit for batch in fractions for hit in batch]
+        hits = [hit for batch in batches for hit in batch]
         return np.array([hit[2] if hit[0] >= 0 else 1.0 for hit in hits], dtype=float)
 
     def contacts(self) -> int:
