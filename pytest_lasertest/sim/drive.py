@@ -50,10 +50,11 @@ class Drive:
 
     def wheel_speeds(self, command: Twist, measured: Twist, step: float) -> tuple[float, float]:
         """Left and right wheel speeds (rad/s) for the next `step` seconds."""
-        self.target = self._ramped(command, step)
+        limited = self._limited(command)
+        self.target = self._ramped(limited, step)
         # Only a steady error is the loop's to remove: while the target ramps, the robot lags it
         # by design, and integrating that lag would overshoot.
-        gain = self.wheels.gain * step if self.target == self._limited(command) else 0.0
+        gain = self.wheels.gain * step if self.target == limited else 0.0
         self._correction = Twist(
             self._correction.linear + gain * (self.target.linear - measured.linear),
             self._correction.angular + gain * (self.target.angular - measured.angular),
@@ -74,10 +75,10 @@ class Drive:
             _clamp(command.angular, robot.max_angular_velocity),
         )
 
-    def _ramped(self, command: Twist, step: float) -> Twist:
-        """The target moved toward the limited command by at most one step of the robot's
-        accelerations."""
-        robot, limited = self.robot, self._limited(command)
+    def _ramped(self, limited: Twist, step: float) -> Twist:
+        """The target moved toward a command within the top speeds by at most one step of the
+        robot's accelerations."""
+        robot = self.robot
         return Twist(
             self.target.linear
             + _clamp(limited.linear - self.target.linear, robot.max_linear_acceleration * step),

@@ -44,6 +44,8 @@ class DirectionSearch:
         self._candidates: dict[float, Candidates] = {}
         self._seeds: dict[tuple[float, float], list[Seed]] = {}
         self._workspace = Workspace()
+        # Candidates serve every shape: they keep what leaves the least demanding one room.
+        self._least_room = min(needed_room(shape, settings) for shape in shapes_for(0, 0.0))
 
     def run(self) -> DirectionPlan:
         """Up to `settings.witnesses` witnesses, each from the next anchor that yields one."""
@@ -109,8 +111,8 @@ class DirectionSearch:
     def _seeds_at(self, anchor: float, shape: ObstacleShape) -> list[Seed]:
         """The anchor's seeds for this shape, found once; the candidates, once for all shapes."""
         if anchor not in self._candidates:
-            least = min(needed_room(each, self.settings) for each in shapes_for(0, 0.0))
-            self._candidates[anchor] = candidates(self.scene, self.direction, anchor, least)
+            near = candidates(self.scene, self.direction, anchor, self._least_room)
+            self._candidates[anchor] = near
         needed = needed_room(shape, self.settings)
         if (anchor, needed) not in self._seeds:
             near = self._candidates[anchor]

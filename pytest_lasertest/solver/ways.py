@@ -37,7 +37,8 @@ def rooms_at(
     if hides_below(scene, direction):
         return np.full((len(times), len(points)), np.inf)
     misser = scene.misser(direction)
-    ways = iter(_way_rooms(misser, *_polar(misser, scene.path.poses_at(times), points)).values())
+    origin, start = _scanners(misser, scene.path.poses_at(times))
+    ways = iter(_way_rooms(misser, *_polar(origin, start, points)).values())
     rooms = next(ways)
     for other in ways:
         np.maximum(rooms, other, out=rooms)
@@ -57,11 +58,10 @@ def _scanners(profile: LaserProfile, poses: FloatArray) -> tuple[FloatArray, Flo
 
 
 def _polar(
-    profile: LaserProfile, poses: FloatArray, points: FloatArray
+    origin: FloatArray, start: FloatArray, points: FloatArray
 ) -> tuple[FloatArray, FloatArray]:
-    """Each point's (P, 2) distance from the scanner at each pose (T, 3), and its bearing from
-    the first beam, counter-clockwise in [0, 2 pi), both (T, P)."""
-    origin, start = _scanners(profile, poses)
+    """Each point's (P, 2) distance from the scanner at each origin (T, 2), and its bearing from
+    the first beam (world angle `start`, (T,)), counter-clockwise in [0, 2 pi), both (T, P)."""
     offsets = points[np.newaxis, :, :] - origin[:, np.newaxis, :]
     distance = np.hypot(offsets[..., 0], offsets[..., 1])
     bearing = (np.arctan2(offsets[..., 1], offsets[..., 0]) - start[:, np.newaxis]) % FULL_TURN
@@ -117,10 +117,10 @@ def misses(
     if hides_below(scene, direction):
         return [() for _ in times]
     poses = scene.path.poses_at(times)
-    distance, bearing = _polar(misser, poses, point[np.newaxis, :])
+    origins, starts = _scanners(misser, poses)
+    distance, bearing = _polar(origins, starts, point[np.newaxis, :])
     rooms = _way_rooms(misser, distance, bearing)
     ways = np.array(list(rooms))[np.argmax(np.stack(list(rooms.values())), axis=0)[:, 0]]
-    origins, starts = _scanners(misser, poses)
     cases = []
     for origin, start, way, angle in zip(origins, starts, ways, bearing[:, 0], strict=True):
         gap = _gap_index(misser, float(angle)) if way == GAP else 0
