@@ -1,6 +1,7 @@
 """Collection nodes: a pairs file, and the items it yields for each pair.
 
-Each pair yields `PAIR[coverage]` and its placement items (`placement_item.py`).
+Each pair yields `PAIR[coverage]`, its control item `PAIR[no-obstacle]` (`drive_item.py`) and
+its placement items (`placement_item.py`).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from _pytest._code.code import TerminalRepr, TracebackStyle
 
 from pytest_lasertest.artifacts.files import artifact_path, write_json
 from pytest_lasertest.coverage import CoverageChange, CoverageComparison, compare_coverage
+from pytest_lasertest.drive_item import CONTROL, ControlItem
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.placement_item import placement_items
 from pytest_lasertest.sensor import LaserProfile
@@ -35,6 +37,9 @@ class PairFile(pytest.File):
         for pair in spec.pairs:
             items.append(
                 CoverageItem.from_parent(self, name=f"{pair.name}[coverage]", spec=spec, pair=pair)
+            )
+            items.append(
+                ControlItem.from_parent(self, name=f"{pair.name}[{CONTROL}]", spec=spec, pair=pair)
             )
             items += placement_items(self, spec, pair)
         return items

@@ -113,6 +113,14 @@ def dilated(obstacle: Obstacle, margin: float) -> Obstacle:
     return grown_cylinder
 
 
+def bounding_radius(obstacle: Obstacle) -> float:
+    """The radius of the smallest circle around the obstacle's centre that holds its footprint
+    (m)."""
+    if isinstance(obstacle, Cylinder):
+        return obstacle.radius
+    return math.hypot(obstacle.length, obstacle.width) / 2.0
+
+
 def ray_distances(origins: FloatArray, directions: FloatArray, obstacle: Obstacle) -> FloatArray:
     """Distance along each ray to where it first enters the obstacle's footprint.
 

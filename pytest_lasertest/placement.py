@@ -26,6 +26,7 @@ from pytest_lasertest.geometry import (
     Cylinder,
     FloatArray,
     Obstacle,
+    bounding_radius,
     polygon_clearance,
     ray_distances,
     segment_clearances,
@@ -213,9 +214,8 @@ def _reach(obstacle: Obstacle) -> float:
     A box's clearance is in its own metric, max(|x'| - a, |y'| - b), which is at least the
     Euclidean distance to its corners' circle divided by sqrt(2).
     """
-    if isinstance(obstacle, Cylinder):
-        return obstacle.radius + EXACT_WITHIN
-    return math.hypot(obstacle.length, obstacle.width) / 2.0 + math.sqrt(2.0) * EXACT_WITHIN
+    slack = EXACT_WITHIN if isinstance(obstacle, Cylinder) else math.sqrt(2.0) * EXACT_WITHIN
+    return bounding_radius(obstacle) + slack
 
 
 def readings(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:

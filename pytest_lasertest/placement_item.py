@@ -16,6 +16,8 @@ import pytest
 from _pytest._code.code import TerminalRepr, TracebackStyle
 
 from pytest_lasertest.artifacts.files import artifact_path, write_json
+from pytest_lasertest.drive_item import CONTROL, DriveFailed, control_drive, drive_report
+from pytest_lasertest.drives import drive_pair
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.placement import (
     DIRECTIONS,
@@ -75,6 +77,25 @@ class PlacementItem(pytest.Item):
         if not verification.holds():
             artifact = self._write_artifact(witness, verification)
             raise VerificationFailed(witness, verification, artifact)
+        if control_drive(self.config, self.spec, self.pair).fails(self.options.policy):
+            raise pytest.skip.Exception(
+                f"the candidate already fails without any obstacle: see {self.pair.name}"
+                f"[{CONTROL}]",
+                _use_item_location=True,
+            )
+        self._drive(witness)
+
+    def _drive(self, witness: Witness) -> None:
+        """Both robots through the world holding the witness; the policy judges the runs."""
+        drives = drive_pair(self.spec, self.pair, (witness.placement.obstacle,), self.options.seed)
+        self.user_properties += drives.properties()
+        if drives.fails(self.options.policy):
+            raise DriveFailed(
+                f"the candidate fails where witness {witness.id} stands: the obstacle the "
+                f"{DETECTED_BY[self.direction]} reads and the other scanner misses",
+                drives,
+                [f"  obstacle   {describe_obstacle(witness.placement.obstacle)}"],
+            )
 
     def _pair_plan(self) -> PairPlan:
         plans = self.config.stash.setdefault(PLANS_KEY, {})
@@ -114,6 +135,8 @@ class PlacementItem(pytest.Item):
     ) -> str | TerminalRepr:
         if isinstance(excinfo.value, VerificationFailed):
             return self._rejection_report(excinfo.value)
+        if isinstance(excinfo.value, DriveFailed):
+            return drive_report(self, self.pair, excinfo.value)
         return super().repr_failure(excinfo, style)
 
     def _rejection_report(self, rejected: VerificationFailed) -> str:

@@ -80,7 +80,11 @@ def pytest_configure(config: pytest.Config) -> None:
         "markers", "coverage: a pytest-lasertest item comparing what two scanners scan"
     )
     config.addinivalue_line(
-        "markers", "placement: a pytest-lasertest item checking one obstacle placement"
+        "markers", "control: a pytest-lasertest item driving both robots through the empty world"
+    )
+    config.addinivalue_line(
+        "markers",
+        "placement: a pytest-lasertest item driving both robots past one obstacle placement",
     )
     here = config.invocation_params.dir
     named = parse_pairs(config.getoption("laser_pairs"), here, "--laser-pairs")

@@ -13,7 +13,7 @@ from pytest_lasertest.artifacts.files import artifact_path
 def test_a_failing_item_writes_every_number_of_its_comparison(
     pytester: pytest.Pytester, pairs_file: Path
 ) -> None:
-    result = pytester.runpytest("--laser-artifacts=out", "--laser-seed=5", "-m", "not placement")
+    result = pytester.runpytest("--laser-artifacts=out", "--laser-seed=5", "-m", "coverage")
     result.assert_outcomes(passed=1, failed=1)
     written = sorted(path.relative_to(pytester.path) for path in (pytester.path / "out").rglob("*"))
     evidence = Path("out/gate.lasertest.yaml/to_lms111_coverage.json")
@@ -32,8 +32,8 @@ def test_passing_items_and_runs_without_the_option_write_nothing(
     pytester: pytest.Pytester, pairs_file: Path
 ) -> None:
     result = pytester.runpytest("-k", "same", "--laser-artifacts=out")
-    result.assert_outcomes(passed=1, skipped=6)
-    pytester.runpytest("-m", "not placement").assert_outcomes(passed=1, failed=1)
+    result.assert_outcomes(passed=2, skipped=6)
+    pytester.runpytest("-m", "coverage").assert_outcomes(passed=1, failed=1)
     assert not (pytester.path / "out").exists()
     assert not list(pytester.path.rglob("*.json"))
 

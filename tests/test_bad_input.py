@@ -352,7 +352,7 @@ def test_a_broken_pairs_file_does_not_stop_the_other_files_from_running(
     (pytester.path / "broken.lasertest.yaml").write_text("robot: [husky\n")
     (pytester.path / "good.lasertest.yaml").write_text(GOOD_PAIRS)
     pytester.makepyfile(test_unit="def test_the_project_s_own_test(): pass")
-    result = pytester.runpytest_subprocess(*workers, "-m", "not placement")
+    result = pytester.runpytest_subprocess(*workers, "-m", "not placement and not control")
     result.assert_outcomes(passed=2, errors=1)
     assert result.ret == pytest.ExitCode.TESTS_FAILED
     result.stdout.fnmatch_lines(["*ERROR collecting broken.lasertest.yaml*", "*1 error*"])
@@ -394,7 +394,7 @@ def test_a_robot_directory_next_to_the_pairs_file_is_found_by_its_relative_path(
     (pytester.path / "gate.lasertest.yaml").write_text(
         VALID_PAIRS.replace("robot: husky", "robot: robots/mybot")
     )
-    result = pytester.runpytest("-m", "not placement")
+    result = pytester.runpytest("-m", "not placement and not control")
     result.assert_outcomes(passed=1, failed=1)
 
 

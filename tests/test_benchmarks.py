@@ -14,16 +14,26 @@ SOLVER_LINE = re.compile(
 )
 
 
-def test_the_solver_benchmark_runs_and_ends_with_its_figures() -> None:
+def printed(*arguments: str) -> list[str]:
+    """The lines a benchmark script prints, run with `arguments` from the repository."""
     result = subprocess.run(
-        [sys.executable, "benchmarks/solver.py", "--catalogue-pairs", "1", "--budget", "0.2"],
-        cwd=REPO,
-        capture_output=True,
-        text=True,
-        check=True,
+        [sys.executable, *arguments], cwd=REPO, capture_output=True, text=True, check=True
     )
-    lines = result.stdout.strip().splitlines()
+    return result.stdout.strip().splitlines()
+
+
+def test_the_solver_benchmark_runs_and_ends_with_its_figures() -> None:
+    lines = printed("benchmarks/solver.py", "--catalogue-pairs", "1", "--budget", "0.2")
     assert SOLVER_LINE.fullmatch(lines[-1])
     checked = next(line for line in lines if line.startswith("verified again by ray casting"))
     verified, total = map(int, re.findall(r"\d+", checked))
     assert verified == total > 0
+
+
+SIM_LINE = re.compile(r"real-time factor: \d+; ratio to bare physics: [\d.]+")
+
+
+def test_the_simulator_benchmark_runs_and_ends_with_its_figures() -> None:
+    lines = printed("benchmarks/sim.py", "--runs", "2", "--memory-runs", "5")
+    assert SIM_LINE.fullmatch(lines[-1])
+    assert "0 physics clients left connected" in lines[-2]

@@ -17,8 +17,9 @@ from tests.conftest import EXAMPLES, SIZE_PAIR
 
 
 def pair_items(file: str, pair: str, witnesses: int = 3) -> list[str]:
-    """The ids a pair collects: its coverage item, then one per direction and witness index."""
-    return [f"{file}::{pair}[coverage]"] + [
+    """The ids a pair collects: its coverage and control items, then one per direction and
+    witness index."""
+    return [f"{file}::{pair}[coverage]", f"{file}::{pair}[no-obstacle]"] + [
         f"{file}::{pair}[{direction}-{index}]"
         for direction in ("candidate-misses", "baseline-misses")
         for index in range(witnesses)
@@ -43,8 +44,10 @@ def examples(pytester: pytest.Pytester) -> Path:
     return Path(shutil.copytree(EXAMPLES, pytester.path / "examples"))
 
 
-# Runs that test the plumbing, not placements, leave the solver out: it takes seconds per pair.
-NO_PLACEMENTS = ("-m", "not placement")
+# Runs that test the plumbing run the coverage items alone: no solver, no simulator.
+NO_PLACEMENTS = ("-m", "coverage")
+# The same, with the project's own unmarked tests.
+PLUMBING = ("-m", "not placement and not control")
 
 
 def collected(result: pytest.RunResult) -> list[str]:
@@ -93,7 +96,7 @@ def test_laser_pairs_with_arguments_runs_both(pytester: pytest.Pytester, pairs_f
     pairs_file.rename(pytester.path / "robot-pairs.yaml")
     pytester.makepyfile(test_unit="def test_unit(): pass")
     result = pytester.runpytest(
-        "test_unit.py", "--laser-pairs", "robot-pairs.yaml", "-q", *NO_PLACEMENTS
+        "test_unit.py", "--laser-pairs", "robot-pairs.yaml", "-q", *PLUMBING
     )
     result.assert_outcomes(passed=2, failed=1)
 
@@ -104,7 +107,7 @@ def test_ini_laser_pairs_are_collected_alongside_the_test_suite(
     pairs_file.rename(pytester.path / "robot-pairs.yaml")
     pytester.makeini("[pytest]\nlaser_pairs = robot-pairs.yaml\n")
     pytester.makepyfile(test_unit="def test_unit(): pass")
-    result = pytester.runpytest("-q", *NO_PLACEMENTS)
+    result = pytester.runpytest("-q", *PLUMBING)
     result.assert_outcomes(passed=2, failed=1)
 
 
@@ -258,11 +261,13 @@ def test_each_pair_collects_a_coverage_item_and_one_item_per_direction_and_witne
     result = pytester.runpytest("--collect-only", "-q")
     assert collected(result) == [
         "gate.lasertest.yaml::size[coverage]",
+        "gate.lasertest.yaml::size[no-obstacle]",
         "gate.lasertest.yaml::size[candidate-misses-0]",
         "gate.lasertest.yaml::size[candidate-misses-1]",
         "gate.lasertest.yaml::size[baseline-misses-0]",
         "gate.lasertest.yaml::size[baseline-misses-1]",
         "gate.lasertest.yaml::same[coverage]",
+        "gate.lasertest.yaml::same[no-obstacle]",
         "gate.lasertest.yaml::same[candidate-misses-0]",
         "gate.lasertest.yaml::same[candidate-misses-1]",
         "gate.lasertest.yaml::same[baseline-misses-0]",
@@ -274,31 +279,51 @@ def test_collection_does_not_load_z3_and_running_a_placement_item_does(
     pytester: pytest.Pytester, placement_pairs: Path
 ) -> None:
     pytester.makeconftest(Z3_PROBE)
-    pytester.runpytest_subprocess("-k", "size and candidate").assert_outcomes(passed=1)
+    outcomes = pytester.runpytest_subprocess("-k", "size and candidate").parseoutcomes()
+    assert outcomes.get("passed", 0) + outcomes.get("failed", 0) == 1
     assert (pytester.path / "z3.txt").read_text() == "False True"
 
 
-def test_a_pair_that_differs_only_in_samples_passes_its_placement_items(
+def test_the_sparser_scanner_drives_into_its_witness_and_the_denser_one_drives_past(
     pytester: pytest.Pytester, placement_pairs: Path
 ) -> None:
-    result = pytester.runpytest("-k", "size", "-m", "placement", "--junitxml=report.xml")
-    result.assert_outcomes(passed=2)
+    result = pytester.runpytest(
+        "-k", "size", "-m", "placement", "--junitxml=report.xml", "--laser-seed=4"
+    )
+    result.assert_outcomes(passed=1, failed=1)
+    result.stdout.fnmatch_lines(
+        [
+            "the candidate fails where witness candidate-misses-0 stands: the obstacle the "
+            "baseline reads and the other scanner misses",
+            "  pair       size (gate.lasertest.yaml:10)",
+            "  obstacle   * m high",
+            "  baseline   clearpath_lms1xx_gazebo: passed: no collision, least clearance * mm; "
+            "never stuck; goal reached at t = * s",
+            "  candidate  clearpath_lms1xx_gazebo: FAILED: collided at t = * s; *",
+            "  policy     candidate",
+            "  replay     pytest 'gate.lasertest.yaml::size[[]candidate-misses-0[]]' "
+            "--laser-seed=4 *",
+        ]
+    )
     cases = junit_cases(pytester.path / "report.xml")
     for direction, detector in [("candidate-misses", "baseline"), ("baseline-misses", "candidate")]:
-        outcome, _, properties = cases[f"gate.lasertest.yaml::size[{direction}-0]"]
-        assert outcome == "passed"
+        _, _, properties = cases[f"gate.lasertest.yaml::size[{direction}-0]"]
         assert properties["lasertest.detected_by"] == detector
         assert float(properties["lasertest.margin"]) >= 0.005
         assert float(properties["lasertest.lead"]) >= 0.0
         assert properties["lasertest.late"] in {"True", "False"}
         assert re.fullmatch(r"(box|cylinder) .* m high", properties["lasertest.obstacle"])
+        assert properties["lasertest.baseline.collision"] == "pass"
+    sparse = cases["gate.lasertest.yaml::size[candidate-misses-0]"].properties
+    assert sparse["lasertest.candidate.collision"] == "fail"
+    assert float(sparse["lasertest.candidate.collision_margin"]) <= 0.0
 
 
 def test_placement_items_of_identical_scanners_are_skipped_because_they_cast_the_same_beams(
     pytester: pytest.Pytester, placement_pairs: Path
 ) -> None:
     result = pytester.runpytest("-k", "same", "-rs")
-    result.assert_outcomes(passed=1, skipped=2)
+    result.assert_outcomes(passed=2, skipped=2)
     result.stdout.fnmatch_lines(
         ["SKIPPED [[]2[]] gate.lasertest.yaml:13: unsat: the two scanners cast the same beams *"]
     )
@@ -311,11 +336,15 @@ def test_not_placement_deselects_the_placement_items_and_not_coverage_the_covera
     without_coverage = pytester.runpytest("-m", "not coverage", "--co", "-q")
     assert collected(without_placements) == [
         "gate.lasertest.yaml::size[coverage]",
+        "gate.lasertest.yaml::size[no-obstacle]",
         "gate.lasertest.yaml::same[coverage]",
+        "gate.lasertest.yaml::same[no-obstacle]",
     ]
     assert collected(without_coverage) == [
+        "gate.lasertest.yaml::size[no-obstacle]",
         "gate.lasertest.yaml::size[candidate-misses-0]",
         "gate.lasertest.yaml::size[baseline-misses-0]",
+        "gate.lasertest.yaml::same[no-obstacle]",
         "gate.lasertest.yaml::same[candidate-misses-0]",
         "gate.lasertest.yaml::same[baseline-misses-0]",
     ]
@@ -331,9 +360,11 @@ def test_items_run_the_same_under_xdist_as_serially(
     assert serial == distributed
     assert {name: case.outcome for name, case in serial.items()} == {
         "gate.lasertest.yaml::size[coverage]": "failure",
-        "gate.lasertest.yaml::size[candidate-misses-0]": "passed",
+        "gate.lasertest.yaml::size[no-obstacle]": "passed",
+        "gate.lasertest.yaml::size[candidate-misses-0]": "failure",
         "gate.lasertest.yaml::size[baseline-misses-0]": "passed",
         "gate.lasertest.yaml::same[coverage]": "passed",
+        "gate.lasertest.yaml::same[no-obstacle]": "passed",
         "gate.lasertest.yaml::same[candidate-misses-0]": "skipped",
         "gate.lasertest.yaml::same[baseline-misses-0]": "skipped",
     }
@@ -373,3 +404,28 @@ def test_a_witness_the_ray_cast_rejects_fails_as_a_bug_in_the_solver(
     )
     assert evidence["witness"]["id"] == "candidate-misses-0"
     assert evidence["verification"]["concealment"] == -0.001
+
+
+def test_a_candidate_that_fails_in_the_empty_world_fails_the_control_item_and_only_that(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    # 2 s cannot take either robot 6 m: the failure is everywhere, not at any placement.
+    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 2.0"))
+    result = pytester.runpytest("-k", "size", "-rs", "--laser-seed=1")
+    result.assert_outcomes(failed=2, skipped=2)
+    result.stdout.fnmatch_lines(
+        [
+            "the candidate fails without any obstacle: the change breaks the robot everywhere*",
+            "  candidate  clearpath_lms1xx_gazebo: FAILED: *goal not reached: * m away at best",
+            "SKIPPED [[]2[]] gate.lasertest.yaml:10: the candidate already fails without any "
+            "obstacle: see size[[]no-obstacle[]]",
+        ]
+    )
+
+
+def test_under_the_regression_policy_a_failure_the_baseline_shares_passes(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 2.0"))
+    result = pytester.runpytest("-k", "size and no-obstacle", "--laser-policy=regression")
+    result.assert_outcomes(passed=1)

@@ -20,9 +20,9 @@ def driven(command: Twist, step: float, seconds: float) -> np.ndarray:
     drive, rows = Drive(HUSKY), []
     with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (), step) as world:
         for index in range(round(seconds / step)):
-            measured = Twist(*world.base_twist())
+            measured = Twist(*world.base_twist(world.base_pose()[2]))
             world.step(*drive.wheel_speeds(command, measured, step))
-            rows.append(((index + 1) * step, *world.base_twist()))
+            rows.append(((index + 1) * step, *world.base_twist(world.base_pose()[2])))
     return np.array(rows)
 
 

@@ -17,7 +17,7 @@ from pytest_lasertest.geometry import (
     segment_clearances,
 )
 from pytest_lasertest.sensor import GaussianNoise, LaserProfile
-from pytest_lasertest.sim.client import PhysicsWorld
+from pytest_lasertest.sim.client import PhysicsWorld, connected_clients
 from pytest_lasertest.sim.lidar import noisy, planar_ranges, ranges_from_fractions, scan_rays
 from tests.conftest import profile
 
@@ -124,10 +124,11 @@ def test_obstacles_are_static_the_robot_cannot_push_them() -> None:
         touched = 0
         for _ in range(300):
             world.step(8.0, 8.0)
-            touched += world.contacts()
+            touched += world.proximity(world.base_pose(), within=1.0)[1]
         reached = world.base_pose()
-        clearance = world.clearance(within=1.0)
+        clearance, touching = world.proximity(reached, within=1.0)
     assert touched > 0
+    assert touching
     assert clearance < 0.001
     # Pushing with all its torque for 3 s, the Husky's bumper (0.505 m ahead of its base, give
     # or take the pitch it pushes with) is still at the box's near face.
@@ -154,4 +155,16 @@ def test_worlds_release_their_clients_and_memory() -> None:
     last = _worlds(200)
 
     assert last.closed
+    assert connected_clients() == 0
     assert _resident_bytes() - before < 10 * 2**20
+
+
+def test_proximity_is_the_clearance_pybullet_measures_capped_at_the_horizon() -> None:
+    near, far = Box(1.2, 0.0, 0.0, 0.2, 0.2, 1.0), Cylinder(9.0, 0.0, 0.1, 1.0)
+    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (near, far), TIME_STEP) as world:
+        clearance, touching = world.proximity(world.base_pose(), within=1.0)
+        capped, _ = world.proximity(world.base_pose(), within=0.5)
+    # The Husky's collision box reaches 0.504 m ahead of base_footprint; the box starts at 1.1.
+    assert clearance == pytest.approx(1.1 - 0.504, abs=0.01)
+    assert not touching
+    assert capped == 0.5

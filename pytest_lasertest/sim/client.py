@@ -15,8 +15,10 @@ from types import ModuleType, TracebackType
 
 import numpy as np
 
-from pytest_lasertest.geometry import Box, FloatArray, Obstacle, Pose2D
+from pytest_lasertest.geometry import Box, FloatArray, Obstacle, Pose2D, bounding_radius
 
+# PyBullet's table of physics clients: ids run from 0 to this, and are reused once disconnected.
+MAX_CLIENTS = 1024
 # rayTestBatch refuses more rays than this in one call.
 MAX_RAYS_PER_CALL = 16384
 # Collision groups: rays look for the world group only, so they pass through the robot itself.
@@ -69,6 +71,10 @@ class PhysicsWorld:
             self._setup(time_step)
             self.robot = self._load_husky(start)
             self.obstacles = tuple(self._add_obstacle(obstacle) for obstacle in obstacles)
+            self._circles = [(o.x, o.y, bounding_radius(o)) for o in obstacles]
+            self._reach = self._robot_reach(start)
+            inertial = self._pybullet.getDynamicsInfo(self.robot, -1, physicsClientId=self._client)
+            self._from_com = self._pybullet.invertTransform(*inertial[3:5])
         except BaseException:
             self.close()
             raise
@@ -110,25 +116,45 @@ class PhysicsWorld:
 
     def base_pose(self) -> FloatArray:
         """The robot's base_footprint in the world plane, [x, y, yaw] (m, m, rad)."""
-        pybullet, client = self._pybullet, self._client
+        pybullet = self._pybullet
         # PyBullet reports the base's centre of mass; the URDF frame sits where the inertial
         # frame says, relative to it.
         com, orientation = pybullet.getBasePositionAndOrientation(
-            self.robot, physicsClientId=client
+            self.robot, physicsClientId=self._client
         )
-        inertial = pybullet.getDynamicsInfo(self.robot, -1, physicsClientId=client)[3:5]
-        position, orientation = pybullet.multiplyTransforms(
-            com, orientation, *pybullet.invertTransform(*inertial)
-        )
+        position, orientation = pybullet.multiplyTransforms(com, orientation, *self._from_com)
         yaw = pybullet.getEulerFromQuaternion(orientation)[2]
         return np.array([position[0], position[1], yaw])
 
-    def base_twist(self) -> tuple[float, float]:
-        """The base's forward speed (m/s) and turn rate (rad/s)."""
-        pybullet = self._pybullet
-        linear, angular = pybullet.getBaseVelocity(self.robot, physicsClientId=self._client)
-        yaw = self.base_pose()[2]
+    def base_twist(self, yaw: float) -> tuple[float, float]:
+        """The base's forward speed (m/s) and turn rate (rad/s), heading `yaw` (rad)."""
+        linear, angular = self._pybullet.getBaseVelocity(self.robot, physicsClientId=self._client)
         return linear[0] * math.cos(yaw) + linear[1] * math.sin(yaw), angular[2]
+
+    def proximity(self, pose: FloatArray, within: float) -> tuple[float, bool]:
+        """The least distance between the robot at `pose` and any obstacle (m, at most
+        `within`), and whether they touch after the last step.
+
+        PyBullet is asked only about obstacles whose bounding circle comes within `within` of
+        the robot's: the others are further away than that.
+        """
+        near = [
+            body
+            for body, (x, y, radius) in zip(self.obstacles, self._circles, strict=True)
+            if math.hypot(x - pose[0], y - pose[1]) - radius - self._reach < within
+        ]
+        if not near:
+            return within, False
+        pybullet, client = self._pybullet, self._client
+        distances = [
+            point[8]
+            for body in near
+            for point in pybullet.getClosestPoints(self.robot, body, within, physicsClientId=client)
+        ]
+        touching = any(
+            pybullet.getContactPoints(self.robot, body, physicsClientId=client) for body in near
+        )
+        return min(distances, default=within), touching
 
     def cast(self, starts: FloatArray, ends: FloatArray) -> FloatArray:
         """Where each ray from `starts` to `ends` (both (R, 3), m) first meets the world, as a
@@ -144,24 +170,6 @@ class PhysicsWorld:
         ]
         hits = [hit for batch in batches for hit in batch]
         return np.array([hit[2] if hit[0] >= 0 else 1.0 for hit in hits], dtype=float)
-
-    def contacts(self) -> int:
-        """How many contact points the robot has with obstacles after the last step."""
-        return sum(
-            len(self._pybullet.getContactPoints(self.robot, body, physicsClientId=self._client))
-            for body in self.obstacles
-        )
-
-    def clearance(self, within: float) -> float:
-        """The least distance between the robot and any obstacle (m), up to `within`."""
-        distances = [
-            point[8]
-            for body in self.obstacles
-            for point in self._pybullet.getClosestPoints(
-                self.robot, body, within, physicsClientId=self._client
-            )
-        ]
-        return min(distances, default=within)
 
     def _setup(self, time_step: float) -> None:
         pybullet = self._pybullet
@@ -197,6 +205,17 @@ class PhysicsWorld:
             )
         return robot
 
+    def _robot_reach(self, start: Pose2D) -> float:
+        """The radius of a circle around base_footprint that holds the whole robot (m)."""
+        pybullet, client = self._pybullet, self._client
+        links = range(-1, pybullet.getNumJoints(self.robot, physicsClientId=client))
+        corners = [
+            corner
+            for link in links
+            for corner in pybullet.getAABB(self.robot, link, physicsClientId=client)
+        ]
+        return max(math.hypot(x - start.x, y - start.y) for x, y, _ in corners)
+
     def _add_obstacle(self, obstacle: Obstacle) -> int:
         """A static body of the obstacle's exact shape, standing on the ground."""
         pybullet = self._pybullet
@@ -231,6 +250,15 @@ class PhysicsWorld:
             pybullet.setCollisionFilterGroupMask(
                 body, link, group, ALL_GROUPS, physicsClientId=self._client
             )
+
+
+def connected_clients() -> int:
+    """How many physics clients this process has connected and not yet disconnected."""
+    pybullet = load_pybullet()
+    return sum(
+        pybullet.getConnectionInfo(physicsClientId=client)["isConnected"]
+        for client in range(MAX_CLIENTS)
+    )
 
 
 def self_test() -> str:

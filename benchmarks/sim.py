@@ -1,0 +1,111 @@
+"""How fast a robot run simulates, against bare PyBullet stepping, measured side by side.
+
+Each robot run drives the Husky with the paper's 720-beam, 50 Hz scanner and the reference
+controller for 30 s of simulated time, past obstacles beside its route. Right before each run,
+the same world (robot, ground, obstacles) is stepped bare for the same simulated time with the
+wheels held at cruising speed: no scans, no controller, no oracles. That is the floor a run
+cannot beat. Then many short runs in one process check that memory and physics clients are
+released. The last line reads `real-time factor: R; ratio to bare physics: Q` (medians).
+
+    python benchmarks/sim.py [--runs 6] [--memory-runs 1000]
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from pathlib import Path
+
+from pytest_lasertest.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D
+from pytest_lasertest.nav.reactive import ReactiveController
+from pytest_lasertest.sim.client import PhysicsWorld, connected_clients
+from pytest_lasertest.sim.drive import HUSKY_WHEELS
+from pytest_lasertest.sim.scenario import Scenario, run_scenario
+from pytest_lasertest.spec import load_pairs_file
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+SCANNER = next(pair for pair in PAPER.pairs if pair.name == "distance").baseline.profile
+SIMULATED = 30.0  # s per run
+START = Pose2D(0.0, 0.0, 0.0)
+ROUTE = (Point2D(30.0, 0.0),)  # beyond what 30 s at 0.5 m/s reaches: the run lasts 30 s
+# Beside the route, inside the scanner's range for most of the run.
+SCENES: dict[str, tuple[Obstacle, ...]] = {
+    "empty": (),
+    "beside the route": (
+        Box(4.0, 1.6, 0.3, 0.6, 0.4, 1.0),
+        Cylinder(7.0, -1.5, 0.1, 1.0),
+        Box(10.0, 2.0, 0.0, 1.0, 0.3, 1.0),
+        Cylinder(13.0, 1.4, 0.05, 1.0),
+    ),
+}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--runs", type=int, default=6, help="robot runs, alternating scenes")
+    parser.add_argument("--memory-runs", type=int, default=1000)
+    args = parser.parse_args()
+    factors, ratios = [], []
+    names = list(SCENES)
+    for index in range(args.runs):
+        name = names[index % len(names)]
+        factor, ratio = one_run(name, SCENES[name])
+        factors.append(factor)
+        ratios.append(ratio)
+    memory_and_clients(args.memory_runs)
+    print(
+        f"real-time factor: {statistics.median(factors):.0f}; "
+        f"ratio to bare physics: {statistics.median(ratios):.2f}"
+    )
+
+
+def one_run(name: str, obstacles: tuple[Obstacle, ...]) -> tuple[float, float]:
+    """A bare stepping of the world, then a robot run in it: (real-time factor, ratio)."""
+    scenario = Scenario(PAPER.robot, SCANNER, obstacles, START, ROUTE, SIMULATED, seed=0)
+    bare = bare_physics(scenario)
+    began = time.perf_counter()
+    run = run_scenario(scenario, ReactiveController)
+    wall = time.perf_counter() - began
+    simulated = float(run.times[-1])
+    factor, ratio = simulated / wall, wall / bare * SIMULATED / simulated
+    print(
+        f"{name}: {simulated:.1f} s simulated in {wall:.3f} s, real-time factor {factor:.0f}; "
+        f"bare physics {bare:.3f} s; ratio {ratio:.2f}; {run.scans} scans; "
+        f"{'passed' if run.passed else '; '.join(run.verdicts.failures())}"
+    )
+    return factor, ratio
+
+
+def bare_physics(scenario: Scenario) -> float:
+    """Wall time (s) of stepping the scenario's world for SIMULATED s, wheels at cruising speed."""
+    wheel = scenario.robot.nominal_speed / HUSKY_WHEELS.radius  # rad/s
+    with PhysicsWorld(scenario.start, scenario.obstacles, scenario.time_step) as world:
+        began = time.perf_counter()
+        for _ in range(round(SIMULATED / scenario.time_step)):
+            world.step(wheel, wheel)
+        return time.perf_counter() - began
+
+
+def memory_and_clients(runs: int) -> None:
+    """Resident memory growth over `runs` one-second robot runs, after ten to warm up."""
+    scenario = Scenario(PAPER.robot, SCANNER, SCENES["beside the route"], START, ROUTE, 1.0, seed=0)
+    for _ in range(10):
+        run_scenario(scenario, ReactiveController)
+    before = resident_bytes()
+    for _ in range(runs):
+        run_scenario(scenario, ReactiveController)
+    grown = (resident_bytes() - before) / 2**20
+    print(
+        f"{runs} runs in one process: resident memory grew {grown:.1f} MB; "
+        f"{connected_clients()} physics clients left connected"
+    )
+
+
+def resident_bytes() -> int:
+    return int(Path("/proc/self/statm").read_text().split()[1]) * 4096
+
+
+if __name__ == "__main__":
+    main()

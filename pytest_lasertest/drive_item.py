@@ -1,0 +1,93 @@
+"""Driving in items: the pair's control item, `PAIR[no-obstacle]`, and the drive failure that
+both it and the placement items report.
+
+The control item drives both robots through the empty world. A candidate that fails there fails
+everywhere, so the pair's placement items then say so in one line and leave the report to it.
+Each process drives a pair's control run once and keeps it for the session; the runs are
+deterministic, so pytest-xdist workers that drive the same pair get the same runs.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import pytest
+from _pytest._code.code import TerminalRepr, TracebackStyle
+
+from pytest_lasertest.drives import PairDrive, drive_lines, drive_pair
+from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
+from pytest_lasertest.spec import Pair, PairsFile
+
+CONTROLS_KEY = pytest.StashKey[dict[tuple[Path, str], PairDrive]]()
+CONTROL = "no-obstacle"
+
+
+class DriveFailed(Exception):
+    """The policy fails a drive: the candidate failed an oracle (under `regression`, one the
+    baseline passed)."""
+
+    def __init__(self, headline: str, drives: PairDrive, details: list[str]) -> None:
+        super().__init__(headline)
+        self.headline = headline
+        self.drives = drives
+        self.details = details
+
+
+def control_drive(config: pytest.Config, spec: PairsFile, pair: Pair) -> PairDrive:
+    """The pair's obstacle-free runs, driven once per process."""
+    controls = config.stash.setdefault(CONTROLS_KEY, {})
+    key = (spec.path, pair.name)
+    if key not in controls:
+        controls[key] = drive_pair(spec, pair, (), config.stash[OPTIONS_KEY].seed)
+    return controls[key]
+
+
+def drive_report(item: pytest.Item, pair: Pair, failed: DriveFailed) -> str:
+    """The failure report of a drive: what happened to each robot, and how to replay it."""
+    options = item.config.stash[OPTIONS_KEY]
+    lines = [
+        failed.headline,
+        f"  pair       {pair.name} ({pair.location})",
+        *failed.details,
+        *drive_lines(failed.drives, pair),
+        f"  policy     {options.policy}",
+        f"  replay     pytest '{item.nodeid}' {options.replay_options()}",
+    ]
+    return "\n".join(lines)
+
+
+class ControlItem(pytest.Item):
+    """Both robots through the empty world: the candidate must still reach the goal there."""
+
+    def __init__(self, *, spec: PairsFile, pair: Pair, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.spec = spec
+        self.pair = pair
+        self.add_marker("lasertest")
+        self.add_marker("control")
+
+    @property
+    def options(self) -> LaserOptions:
+        return self.config.stash[OPTIONS_KEY]
+
+    def runtest(self) -> None:
+        drives = control_drive(self.config, self.spec, self.pair)
+        self.user_properties += [("lasertest.seed", self.options.seed), *drives.properties()]
+        if drives.fails(self.options.policy):
+            raise DriveFailed(
+                "the candidate fails without any obstacle: the change breaks the robot "
+                "everywhere, not only where the scanners differ",
+                drives,
+                [],
+            )
+
+    def repr_failure(
+        self, excinfo: pytest.ExceptionInfo[BaseException], style: TracebackStyle | None = None
+    ) -> str | TerminalRepr:
+        if isinstance(excinfo.value, DriveFailed):
+            return drive_report(self, self.pair, excinfo.value)
+        return super().repr_failure(excinfo, style)
+
+    def reportinfo(self) -> tuple[Path, int, str]:
+        return self.path, self.pair.location.line - 1, self.name

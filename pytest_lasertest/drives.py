@@ -1,0 +1,81 @@
+"""Both robots of a pair driven through one world, and what the policy makes of it.
+
+The baseline and the candidate are the same robot with different scanners: each drives the
+pairs file's route with the reference controller, in a world holding the given obstacles (none
+for the pair's control run), with scan noise from the run's seed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from pytest_lasertest.geometry import Obstacle
+from pytest_lasertest.nav.reactive import ReactiveController
+from pytest_lasertest.options import Policy
+from pytest_lasertest.sensor import LaserProfile
+from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
+from pytest_lasertest.spec import Pair, PairsFile
+
+
+@dataclass(frozen=True, eq=False)
+class PairDrive:
+    """The runs of the baseline and the candidate through one world."""
+
+    baseline: Run
+    candidate: Run
+
+    def fails(self, policy: Policy) -> bool:
+        """Whether the policy fails this: any failure of the candidate, or under `regression`
+        only one the baseline does not share."""
+        if policy == "regression":
+            return self.baseline.passed and not self.candidate.passed
+        return not self.candidate.passed
+
+    def properties(self) -> list[tuple[str, object]]:
+        """Each oracle's margin and outcome for both robots, for JUnit XML and pytest-xdist."""
+        rows: list[tuple[str, object]] = []
+        for side, run in (("baseline", self.baseline), ("candidate", self.candidate)):
+            verdicts = run.verdicts
+            for oracle in ("collision", "stuck", "goal"):
+                verdict = getattr(verdicts, oracle)
+                rows.append((f"lasertest.{side}.{oracle}", "pass" if verdict.passed else "fail"))
+                margin = round(float(verdict.margin), 4)  # m; a plain float crosses to xdist
+                rows.append((f"lasertest.{side}.{oracle}_margin", margin))
+            rows.append((f"lasertest.{side}.trajectory", run.digest()[:16]))
+        return rows
+
+
+def drive_pair(
+    spec: PairsFile, pair: Pair, obstacles: tuple[Obstacle, ...], seed: int
+) -> PairDrive:
+    """Drive both robots of the pair through a world holding `obstacles`."""
+    return PairDrive(
+        baseline=drive(spec, pair.baseline.profile, obstacles, seed),
+        candidate=drive(spec, pair.candidate.profile, obstacles, seed),
+    )
+
+
+def drive(
+    spec: PairsFile, profile: LaserProfile, obstacles: tuple[Obstacle, ...], seed: int
+) -> Run:
+    """One robot of the pairs file, carrying `profile`, through a world holding `obstacles`."""
+    world = spec.world
+    scenario = Scenario(
+        spec.robot, profile, obstacles, world.start, world.route, world.time_limit, seed
+    )
+    return run_scenario(scenario, ReactiveController)
+
+
+def drive_lines(drives: PairDrive, pair: Pair) -> list[str]:
+    """Report lines: each robot's scanner and what its run did."""
+    lines = []
+    for side, run in (("baseline", drives.baseline), ("candidate", drives.candidate)):
+        scanner = getattr(pair, side)
+        verdicts = run.verdicts
+        outcome = "; ".join(
+            verdict.describe() for verdict in (verdicts.collision, verdicts.stuck, verdicts.goal)
+        )
+        lines.append(
+            f"  {side:<10} {scanner.label}: {'passed' if run.passed else 'FAILED'}: {outcome}"
+        )
+    return lines

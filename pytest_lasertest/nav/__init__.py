@@ -1,0 +1,1 @@
+"""Controllers under test: what a robot does with its scans. Numpy only, no simulator, no Z3."""

@@ -1,0 +1,75 @@
+"""What a controller sees and answers: ROS's LaserScan and Odometry in, a velocity command out.
+
+A scenario makes one controller per run (`ControllerFactory`) and calls `observe` with each scan
+at the scanner's update rate; the command it returns holds until the next scan, as a ROS node's
+cmd_vel holds until the next message.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from pytest_lasertest.geometry import FloatArray, Point2D, Pose3D
+from pytest_lasertest.robot import Robot
+from pytest_lasertest.sensor import LaserScanMeta
+
+_NO_POINTS: FloatArray = np.zeros((0, 2))
+
+
+@dataclass(frozen=True, eq=False)
+class LaserScan:
+    """One sensor_msgs/LaserScan, with where its laser sits on the robot (what tf would say)."""
+
+    stamp: float  # s
+    ranges: FloatArray  # (N,) m in beam order; +inf no return, -inf nearer than range_min
+    meta: LaserScanMeta
+    mount: Pose3D  # the laser frame in the robot's base_footprint
+
+    def points_in_base(self, within: float = math.inf) -> FloatArray:
+        """Where each finite reading nearer than `within` m lies in the robot's base frame,
+        shape (M, 2), m."""
+        beams = np.flatnonzero(np.abs(self.ranges) < within)
+        if not len(beams):
+            return _NO_POINTS
+        angles = self.meta.angle_min + beams * self.meta.angle_increment
+        distances = self.ranges[beams]
+        in_laser = np.stack([distances * np.cos(angles), distances * np.sin(angles)])
+        turn, shift = _planar_mount(self.mount)
+        points: FloatArray = (turn @ in_laser).T + shift
+        return points
+
+
+@functools.cache
+def _planar_mount(mount: Pose3D) -> tuple[FloatArray, FloatArray]:
+    """The mount's rotation within the scan plane (2, 2) and its offset (2,) m: the scan plane
+    is level, so a point's height does not move it across the ground."""
+    return mount.rotation()[:2, :2], np.array(mount.xyz[:2])
+
+
+@dataclass(frozen=True)
+class Odometry:
+    """nav_msgs/Odometry in the plane: the base's pose in the odom frame and its twist."""
+
+    x: float  # m
+    y: float  # m
+    yaw: float  # rad
+    linear: float  # m/s, forward
+    angular: float  # rad/s, counter-clockwise
+
+
+class Controller(Protocol):
+    """A robot's navigation: a velocity command for each scan."""
+
+    def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
+        """The forward speed (m/s) and turn rate (rad/s) to drive at until the next scan."""
+        ...
+
+
+# Makes the controller of one run: the robot it drives and its route, the goal last.
+ControllerFactory = Callable[[Robot, tuple[Point2D, ...]], Controller]

@@ -1,0 +1,140 @@
+"""The reference controller: drive toward the goal, slow and steer away from readings in the
+robot's path, stop if blocked.
+
+It remembers nothing it has seen: each command comes from the latest scan alone. A thin
+obstacle that falls between two beams as the robot closes in is, to it, gone. That is the
+weakness of a sparse scanner the paper's "size" pair exposes; the costmap of the full navigation
+stack remembers what it marked.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from pytest_lasertest.geometry import FloatArray, Point2D, wrap_angle
+from pytest_lasertest.nav.protocol import LaserScan, Odometry
+from pytest_lasertest.robot import Robot
+
+
+@dataclass(frozen=True)
+class ReactiveSettings:
+    """How cautiously the reference controller drives."""
+
+    goal_tolerance: float = 0.2  # m, the Husky's move_base xy_goal_tolerance
+    side_margin: float = 0.05  # m beside the footprint that still counts as the robot's path
+    stop_gap: float = 0.15  # m: a reading this near ahead of the front blocks the robot
+    slow_gap: float = 1.5  # m: a path clear for less than this is driven slowly
+    near_gap: float = 0.5  # m: a reading this near straight ahead slows the robot too
+    heading_gain: float = 3.0  # 1/s, turn rate per rad of heading error
+    turn_in_place: float = 1.6  # rad: a heading error above this is turned on the spot
+    widest_swerve: float = 0.8  # rad: the headings weighed lie this far either side
+    headings: int = 33  # how many headings are weighed
+    course_keeping: float = 0.5  # weight of a change of course against a heading error
+
+
+class ReactiveController:
+    """The reference controller for one run along a route of waypoints, the goal last."""
+
+    def __init__(
+        self, robot: Robot, route: tuple[Point2D, ...], settings: ReactiveSettings | None = None
+    ) -> None:
+        self.settings = settings or ReactiveSettings()
+        self.route = route
+        self.waypoint = 0
+        self._last_course: float | None = None  # rad, in the odometry frame
+        footprint = robot.footprint_array()
+        self._front = float(footprint[:, 0].max())  # m
+        self._half_width = float(np.abs(footprint[:, 1]).max()) + self.settings.side_margin  # m
+        self._speed = robot.nominal_speed  # m/s
+        self._turn_rate = robot.nominal_turn_rate  # rad/s
+        swerve = self.settings.widest_swerve
+        self._headings = np.linspace(-swerve, swerve, self.settings.headings)  # rad
+        self._along = np.stack([np.cos(self._headings), np.sin(self._headings)])
+        self._across = np.stack([-np.sin(self._headings), np.cos(self._headings)])
+        self._open = np.full(len(self._headings), np.inf)
+        # Readings further than this from the base cannot narrow a path below the slow gap.
+        self._relevant = math.hypot(self._front + self.settings.slow_gap, self._half_width)  # m
+
+    def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
+        """Along the clear heading nearest the current waypoint's, as fast as its room allows."""
+        error = self._heading_error(odometry)
+        if error is None:
+            return 0.0, 0.0
+        settings = self.settings
+        if abs(error) > settings.turn_in_place:
+            return 0.0, _clamp(settings.heading_gain * error, self._turn_rate)
+        room = self._room(scan.points_in_base(within=self._relevant + scan_offset(scan)))
+        if room.max() <= settings.stop_gap:
+            return 0.0, 0.0
+        heading = self._choice(room, error, odometry.yaw)
+        self._last_course = odometry.yaw + float(self._headings[heading])
+        turn = settings.heading_gain * float(self._headings[heading])
+        # The chosen path's room sets the pace; the room straight ahead, where the robot still
+        # points while it turns, may cut it to a crawl or to turning on the spot.
+        pace = min(
+            _ramp(room[heading], settings.stop_gap, settings.slow_gap),
+            _ramp(room[len(room) // 2], settings.stop_gap, settings.near_gap),
+        )
+        return self._speed * pace, _clamp(turn, self._turn_rate)
+
+    def _heading_error(self, odometry: Odometry) -> float | None:
+        """The turn toward the current waypoint (rad), or None once the goal is reached."""
+        while True:
+            target = self.route[self.waypoint]
+            dx, dy = target.x - odometry.x, target.y - odometry.y
+            if math.hypot(dx, dy) > self.settings.goal_tolerance:
+                return _wrapped(math.atan2(dy, dx) - odometry.yaw)
+            if self.waypoint == len(self.route) - 1:
+                return None
+            self.waypoint += 1
+
+    def _room(self, points: FloatArray) -> FloatArray:
+        """How far the robot's path along each weighed heading is clear beyond its front,
+        shape (H,), m; inf where no reading lies in it."""
+        if not len(points):
+            return self._open
+        along, across = points @ self._along, points @ self._across
+        in_path = (along > 0.0) & (np.abs(across) <= self._half_width)
+        nearest = np.where(in_path, along, np.inf).min(axis=0, initial=np.inf)
+        room: FloatArray = nearest - self._front
+        return room
+
+    def _choice(self, room: FloatArray, error: float, yaw: float) -> int:
+        """The heading to drive: the one nearest the waypoint's among those clear for the slow
+        gap, or else the clearest. Keeping to the last course counts too, so that an obstacle
+        straight ahead is passed on one side, not dithered at."""
+        if room is self._open:
+            # Nothing near: no side to keep to, only the waypoint.
+            step = 2.0 * self.settings.widest_swerve / (self.settings.headings - 1)
+            nearest = round((error + self.settings.widest_swerve) / step)
+            return max(0, min(self.settings.headings - 1, nearest))
+        clear = room >= self.settings.slow_gap
+        if not clear.any():
+            return int(np.argmax(room))
+        cost = np.abs(self._headings - error)
+        if self._last_course is not None:
+            change = wrap_angle(self._headings + yaw - self._last_course)
+            cost += self.settings.course_keeping * np.abs(change)
+        return int(np.argmin(np.where(clear, cost, np.inf)))
+
+
+def _wrapped(angle: float) -> float:
+    """The angle in [-pi, pi) rad."""
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+
+
+def scan_offset(scan: LaserScan) -> float:
+    """How far the laser sits from the base origin (m)."""
+    return math.hypot(*scan.mount.xyz[:2])
+
+
+def _ramp(value: float, low: float, high: float) -> float:
+    """0 at or below `low`, 1 at or above `high`, linear between."""
+    return min(1.0, max(0.0, (float(value) - low) / (high - low)))
+
+
+def _clamp(value: float, limit: float) -> float:
+    return max(-limit, min(limit, value))

@@ -1,0 +1,164 @@
+"""Scenario runs: the reference controller on the paper's pairs, determinism, the oracles'
+verdicts, and a process that runs many of them."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from pytest_lasertest.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D
+from pytest_lasertest.nav.reactive import ReactiveController
+from pytest_lasertest.sim.client import connected_clients
+from pytest_lasertest.sim.oracles import Referee, Rules
+from pytest_lasertest.sim.scenario import Caster, Scenario, run_scenario
+from pytest_lasertest.solver.plan import plan_pair
+from pytest_lasertest.spec import load_pairs_file
+from tests.conftest import EXAMPLES
+
+PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+SIZE = next(pair for pair in PAPER.pairs if pair.name == "size")
+START = Pose2D(0.0, 0.0, 0.0)
+GOAL = (Point2D(10.0, 0.0),)
+ORIGIN = Point2D(0.0, 0.0)
+
+
+def scenario(
+    side: str,
+    obstacles: tuple[Obstacle, ...],
+    seed: int = 0,
+    time_limit: float = 40.0,
+    caster: Caster = "flat",
+) -> Scenario:
+    """The size pair's baseline or candidate robot driving 10 m straight ahead."""
+    profile = getattr(SIZE, side).profile
+    return Scenario(PAPER.robot, profile, obstacles, START, GOAL, time_limit, seed, caster=caster)
+
+
+@pytest.fixture(scope="module")
+def thin_pole() -> Cylinder:
+    """The size pair's thin pole: the witness the 32-beam scanner reads and the 16-beam one
+    misses for the longest."""
+    plan = plan_pair(PAPER, SIZE)
+    poles = [
+        witness.placement.obstacle
+        for witness in plan.direction("candidate-misses").witnesses
+        if isinstance(witness.placement.obstacle, Cylinder)
+    ]
+    assert poles, "the size pair's plan has no pole"
+    return poles[0]
+
+
+def test_the_16_beam_robot_hits_the_thin_pole_and_the_32_beam_robot_reaches_the_goal(
+    thin_pole: Cylinder,
+) -> None:
+    for seed in range(3):
+        sparse = run_scenario(scenario("candidate", (thin_pole,), seed), ReactiveController)
+        dense = run_scenario(scenario("baseline", (thin_pole,), seed), ReactiveController)
+
+        assert not sparse.verdicts.collision.passed
+        assert sparse.verdicts.collision.margin <= 0.0
+        assert dense.passed, dense.verdicts.failures()
+        assert dense.verdicts.collision.margin > 0.0
+
+
+def test_a_scenario_run_five_times_gives_one_trajectory_bit_for_bit(thin_pole: Cylinder) -> None:
+    box = Box(5.0, -1.0, 0.4, 0.8, 0.3, 1.0)
+    runs = [
+        run_scenario(scenario("baseline", (thin_pole, box), seed=7), ReactiveController)
+        for _ in range(5)
+    ]
+    assert len({run.digest() for run in runs}) == 1
+    assert runs[0].scans > 100
+
+
+def test_a_candidate_in_the_empty_world_reaches_the_goal_in_the_nominal_time() -> None:
+    run = run_scenario(scenario("candidate", ()), ReactiveController)
+    assert run.passed
+    goal = run.verdicts.goal
+    # 10 m at the Husky's nominal 0.5 m/s, less the 0.2 m tolerance, plus speeding up.
+    assert goal.time == pytest.approx(9.8 / 0.5, abs=0.5)
+    assert run.poses[-1, 0] == pytest.approx(9.8, abs=0.05)
+
+
+@pytest.mark.parametrize("caster", ["flat", "pybullet"])
+def test_both_ray_casters_drive_the_same_run(caster: Caster) -> None:
+    wall = Box(4.0, 0.0, 0.0, 0.3, 3.0, 1.0)  # across the route: the robot stops before it
+    run = run_scenario(scenario("baseline", (wall,), caster=caster), ReactiveController)
+    flat = run_scenario(scenario("baseline", (wall,)), ReactiveController)
+    for oracle in ("collision", "stuck", "goal"):
+        mine, theirs = getattr(run.verdicts, oracle), getattr(flat.verdicts, oracle)
+        assert mine.time == theirs.time
+        assert mine.margin == pytest.approx(theirs.margin, abs=0.001)
+    np.testing.assert_allclose(run.poses[-1], flat.poses[-1], atol=0.02)
+
+
+def test_a_robot_facing_a_wall_across_its_route_stops_and_is_stuck_not_crashed() -> None:
+    wall = Box(4.0, 0.0, 0.0, 0.3, 6.0, 1.0)
+    run = run_scenario(scenario("baseline", (wall,)), ReactiveController)
+    verdicts = run.verdicts
+    assert verdicts.collision.passed
+    assert not verdicts.stuck.passed
+    assert not verdicts.goal.passed
+    assert 0.0 < verdicts.collision.margin < 0.3
+    assert verdicts.stuck.time == pytest.approx(run.times[-1])
+
+
+def test_the_referee_says_stuck_after_a_whole_window_without_progress() -> None:
+    rules = Rules(stuck_distance=0.1, stuck_window=1.0)
+    referee = Referee(rules, ORIGIN, GOAL, time_step=0.1)
+    decided = [referee.update(0.1 * step, 2.0, 0.0, 0.5, False) for step in range(1, 12)]
+    assert decided == [False] * 10 + [True]
+    stuck = referee.verdicts().stuck
+    assert stuck.time == pytest.approx(1.1)
+    assert stuck.margin == pytest.approx(-0.1)
+
+
+def test_the_referee_measures_progress_along_the_route_through_its_waypoints() -> None:
+    route = (Point2D(5.0, 0.0), Point2D(5.0, 5.0))
+    referee = Referee(Rules(stuck_window=0.2), ORIGIN, route, time_step=0.1)
+    # Driving away from the goal's straight line but along the route still counts as progress.
+    for step, x in enumerate((1.0, 2.0, 3.0, 4.0)):
+        referee.update(0.1 * (step + 1), x, 0.0, 0.5, False)
+    verdicts = referee.verdicts()
+    assert verdicts.stuck.passed
+    assert verdicts.stuck.least_progress == pytest.approx(2.0)
+    assert verdicts.goal.nearest == pytest.approx(math.hypot(1.0, 5.0))
+
+
+def test_the_referee_keeps_the_first_contact_and_the_least_clearance() -> None:
+    referee = Referee(Rules(), ORIGIN, GOAL, time_step=0.1)
+    referee.update(0.1, 0.0, 0.0, 0.3, False)
+    assert referee.update(0.2, 0.1, 0.0, -0.002, True)
+    referee.update(0.3, 0.1, 0.0, 0.1, True)
+    collision = referee.verdicts().collision
+    assert collision.time == pytest.approx(0.2)
+    assert collision.margin == pytest.approx(-0.002)
+    assert not collision.passed
+    assert "collided at t = 0.20 s" in collision.describe()
+
+
+def test_the_referee_says_the_goal_is_reached_within_its_tolerance() -> None:
+    referee = Referee(Rules(goal_tolerance=0.2), ORIGIN, GOAL, time_step=0.1)
+    assert not referee.update(0.1, 9.7, 0.0, 0.5, False)
+    assert referee.update(0.2, 9.85, 0.0, 0.5, False)
+    goal = referee.verdicts().goal
+    assert goal.passed
+    assert goal.margin == pytest.approx(0.05)
+
+
+def _resident_bytes() -> int:
+    return int(Path("/proc/self/statm").read_text().split()[1]) * 4096
+
+
+def test_many_runs_in_one_process_leak_no_client_and_little_memory(thin_pole: Cylinder) -> None:
+    short = scenario("baseline", (thin_pole,), time_limit=0.5)
+    for _ in range(10):
+        run_scenario(short, ReactiveController)
+    before = _resident_bytes()
+    for _ in range(100):
+        run_scenario(short, ReactiveController)
+    assert connected_clients() == 0
+    assert _resident_bytes() - before < 5 * 2**20
