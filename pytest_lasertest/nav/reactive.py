@@ -66,7 +66,7 @@ class ReactiveController:
         settings = self.settings
         if abs(error) > settings.turn_in_place:
             return 0.0, _clamp(settings.heading_gain * error, self._turn_rate)
-        room = self._room(scan.points_in_base(within=self._relevant + scan_offset(scan)))
+        room = self._room(scan.points_in_base(within=self._relevant + _scan_offset(scan)))
         if room.max() <= settings.stop_gap:
             return 0.0, 0.0
         heading = self._choice(room, error, odometry.yaw)
@@ -126,7 +126,7 @@ def _wrapped(angle: float) -> float:
     return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
-def scan_offset(scan: LaserScan) -> float:
+def _scan_offset(scan: LaserScan) -> float:
     """How far the laser sits from the base origin (m)."""
     return math.hypot(*scan.mount.xyz[:2])
 
