@@ -14,11 +14,18 @@ from pytest_lasertest.geometry import (
     Obstacle,
     Pose2D,
     Pose3D,
+    ray_distances,
     segment_clearances,
 )
 from pytest_lasertest.sensor import GaussianNoise, LaserProfile
 from pytest_lasertest.sim.client import PhysicsWorld, connected_clients
-from pytest_lasertest.sim.lidar import noisy, planar_ranges, ranges_from_fractions, scan_rays
+from pytest_lasertest.sim.lidar import (
+    FlatLidar,
+    fan_distances,
+    noisy,
+    ranges_from_fractions,
+    scan_rays,
+)
 from tests.conftest import profile
 
 HUSKY_LASER = Pose3D((0.337, 0.0, 0.308), (math.pi, 0.0, 0.0))
@@ -60,7 +67,7 @@ def test_pybullet_and_the_flat_ray_cast_read_the_same_ranges_beam_for_beam() -> 
         ) as world:
             pose = world.base_pose()
             simulated = pybullet_ranges(world, SCANNER, pose)
-        flat = planar_ranges(SCANNER, pose, obstacles)
+        flat = FlatLidar(SCANNER, obstacles).ranges(pose)
 
         origins, directions = SCANNER.rays(pose[np.newaxis, :])
         count = SCANNER.beam_count
@@ -168,3 +175,25 @@ def test_proximity_is_the_clearance_pybullet_measures_capped_at_the_horizon() ->
     assert clearance == pytest.approx(1.1 - 0.504, abs=0.01)
     assert not touching
     assert capped == 0.5
+
+
+def test_the_fan_ray_cast_equals_the_exact_ray_cast_of_geometry() -> None:
+    rng = np.random.default_rng(3)
+    for obstacle in random_scene(rng) * 5:
+        origin = (float(rng.uniform(-7.0, 7.0)), float(rng.uniform(-7.0, 7.0)))
+        yaw = obstacle.yaw if isinstance(obstacle, Box) else 0.0
+        # Random rays, and rays exactly along and across a box's sides.
+        angles = np.concatenate(
+            [rng.uniform(-math.pi, math.pi, 200), yaw + np.arange(4) * 0.5 * math.pi]
+        )
+        directions = np.column_stack([np.cos(angles), np.sin(angles)])
+        exact = ray_distances(np.tile(origin, (len(angles), 1)), directions, obstacle)
+        np.testing.assert_allclose(
+            fan_distances(origin, angles, obstacle), exact, rtol=1e-9, atol=1e-9
+        )
+
+
+def test_a_fan_from_inside_an_obstacle_reads_zero() -> None:
+    for obstacle in (Box(1.0, 2.0, 0.3, 1.0, 0.5, 1.0), Cylinder(1.0, 2.0, 0.4, 1.0)):
+        angles = np.linspace(-math.pi, math.pi, 9)
+        assert np.all(fan_distances((1.1, 2.05), angles, obstacle) == 0.0)

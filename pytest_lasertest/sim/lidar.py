@@ -23,8 +23,6 @@ from pytest_lasertest.geometry import (
 )
 from pytest_lasertest.sensor import FULL_TURN, LaserProfile
 
-_NO_BEAMS: IntArray = np.zeros(0, dtype=np.intp)
-
 
 def scan_rays(profile: LaserProfile, pose: FloatArray) -> tuple[FloatArray, FloatArray]:
     """The scan's rays from the scanner at robot pose [x, y, yaw] out to range_max, in the scan
@@ -59,8 +57,9 @@ class FlatLidar:
         angles = profile.beam_angles_in_base()
         self._angles = angles
         # The beams by angle, twice round, so that a window across -pi is one slice.
-        self._order = np.tile(np.argsort(angles, kind="stable"), 2)
-        self._ring = [*np.sort(angles).tolist(), *(np.sort(angles) + FULL_TURN).tolist()]
+        order = np.argsort(angles, kind="stable")
+        self._order = np.tile(order, 2)
+        self._ring = [*angles[order].tolist(), *(angles[order] + FULL_TURN).tolist()]
         self._mount = profile.pose.xyz[:2]
         self._nothing = np.full(profile.beam_count, np.inf)
 
@@ -72,35 +71,38 @@ class FlatLidar:
         origin = (x + cos * mount_x - sin * mount_y, y + sin * mount_x + cos * mount_y)
         ranges = self._nothing.copy()
         for obstacle, reach in zip(self.obstacles, self._reach, strict=True):
-            beams = self._beams_towards(origin, yaw, obstacle, reach)
+            distance = math.hypot(obstacle.x - origin[0], obstacle.y - origin[1])
+            if distance - reach > self.profile.range_max:
+                continue
+            beams = self._beams_towards(origin, yaw, obstacle, reach, distance)
             if len(beams):
                 hits = fan_distances(origin, yaw + self._angles[beams], obstacle)
-                ranges[beams] = np.minimum(ranges[beams], self._rep117(hits, obstacle, origin))
+                ranges[beams] = np.minimum(ranges[beams], self._in_range(hits, distance, reach))
         return ranges
 
     def _beams_towards(
-        self, origin: tuple[float, float], yaw: float, obstacle: Obstacle, reach: float
+        self,
+        origin: tuple[float, float],
+        yaw: float,
+        obstacle: Obstacle,
+        reach: float,
+        distance: float,
     ) -> IntArray:
-        """The beams that may touch the circle of radius `reach` around the obstacle's centre."""
-        dx, dy = obstacle.x - origin[0], obstacle.y - origin[1]
-        distance = math.hypot(dx, dy)
-        if distance - reach > self.profile.range_max:
-            return _NO_BEAMS
+        """The beams that may touch the circle of radius `reach` around the obstacle's centre,
+        `distance` m from the scanner."""
         half = math.asin(reach / distance) if distance > reach else math.pi
-        low = (math.atan2(dy, dx) - yaw - half + math.pi) % FULL_TURN - math.pi
+        bearing = math.atan2(obstacle.y - origin[1], obstacle.x - origin[0])
+        low = (bearing - yaw - half + math.pi) % FULL_TURN - math.pi
         first = bisect.bisect_left(self._ring, low)
         last = bisect.bisect_right(self._ring, low + 2.0 * half)
         beams: IntArray = self._order[first : min(last, first + self.profile.beam_count)]
         return beams
 
-    def _rep117(
-        self, distances: FloatArray, obstacle: Obstacle, origin: tuple[float, float]
-    ) -> FloatArray:
-        """Distances (K,) m to the obstacle as LaserScan ranges: +inf beyond range_max, -inf
-        short of range_min; an obstacle wholly between the two is read as it is."""
+    def _in_range(self, distances: FloatArray, centre: float, reach: float) -> FloatArray:
+        """Distances (K,) m to an obstacle whose centre is `centre` m away as LaserScan ranges:
+        +inf beyond range_max, -inf short of range_min; an obstacle wholly between the two is
+        read as it is."""
         profile = self.profile
-        centre = math.hypot(obstacle.x - origin[0], obstacle.y - origin[1])
-        reach = bounding_radius(obstacle)
         if centre + reach > profile.range_max:
             distances = np.where(distances > profile.range_max, np.inf, distances)
         if centre - reach < profile.range_min:
@@ -160,14 +162,6 @@ def _fan_slab(position: float, steps: FloatArray, half: float) -> tuple[FloatArr
     inverse = 1.0 / steps
     low, high = (-half - position) * inverse, (half - position) * inverse
     return np.minimum(low, high), np.maximum(low, high)
-
-
-def planar_ranges(
-    profile: LaserProfile, pose: FloatArray, obstacles: tuple[Obstacle, ...]
-) -> FloatArray:
-    """LaserScan ranges (N,) of the scan at robot pose [x, y, yaw], cast flat against the
-    obstacles that reach above the scan plane."""
-    return FlatLidar(profile, obstacles).ranges(pose)
 
 
 def noisy(profile: LaserProfile, ranges: FloatArray, rng: np.random.Generator) -> FloatArray:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections import deque
 from dataclasses import dataclass
 
 from pytest_lasertest.geometry import Point2D
@@ -133,7 +134,8 @@ class Referee:
         # The route's length from the end of each leg to the goal.
         self._tails = [sum(lengths[index + 1 :]) for index in range(len(lengths))]
         self._window_steps = max(1, round(rules.stuck_window / time_step))
-        self._remaining: list[float] = []
+        # The remaining route over the last window, oldest first.
+        self._remaining: deque[float] = deque(maxlen=self._window_steps + 1)
         self._contact: float | None = None
         self._stuck: float | None = None
         self._arrived: float | None = None
@@ -174,7 +176,7 @@ class Referee:
         self._remaining.append(remaining)
         if len(self._remaining) <= self._window_steps:
             return
-        progress = self._remaining[-1 - self._window_steps] - remaining
+        progress = self._remaining[0] - remaining
         self._least_progress = min(self._least_progress, progress)
         if progress <= self.rules.stuck_distance and self._stuck is None:
             self._stuck = time
