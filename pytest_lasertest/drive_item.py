@@ -17,9 +17,11 @@ from _pytest._code.code import TerminalRepr, TracebackStyle
 
 from pytest_lasertest.drives import PairDrive, drive_lines, drive_pair
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
+from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.spec import Pair, PairsFile
 
 CONTROLS_KEY = pytest.StashKey[dict[tuple[Path, str], PairDrive]]()
+PHYSICS_KEY = pytest.StashKey[PhysicsClient]()
 CONTROL = "no-obstacle"
 
 
@@ -34,12 +36,23 @@ class DriveFailed(Exception):
         self.details = details
 
 
+def physics_client(config: pytest.Config) -> PhysicsClient:
+    """The process's physics client, which every drive resets and builds its world in: a client
+    of its own would cost each run 10 ms to connect."""
+    if PHYSICS_KEY not in config.stash:
+        client = PhysicsClient()
+        config.stash[PHYSICS_KEY] = client
+        config.add_cleanup(client.close)
+    return config.stash[PHYSICS_KEY]
+
+
 def control_drive(config: pytest.Config, spec: PairsFile, pair: Pair) -> PairDrive:
     """The pair's obstacle-free runs, driven once per process."""
     controls = config.stash.setdefault(CONTROLS_KEY, {})
     key = (spec.path, pair.name)
     if key not in controls:
-        controls[key] = drive_pair(spec, pair, (), config.stash[OPTIONS_KEY].seed)
+        seed = config.stash[OPTIONS_KEY].seed
+        controls[key] = drive_pair(spec, pair, (), seed, physics_client(config))
     return controls[key]
 
 

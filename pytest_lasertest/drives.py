@@ -13,6 +13,7 @@ from pytest_lasertest.geometry import Obstacle
 from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.options import Policy
 from pytest_lasertest.sensor import LaserProfile
+from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
 from pytest_lasertest.spec import Pair, PairsFile
 
@@ -46,24 +47,33 @@ class PairDrive:
 
 
 def drive_pair(
-    spec: PairsFile, pair: Pair, obstacles: tuple[Obstacle, ...], seed: int
+    spec: PairsFile,
+    pair: Pair,
+    obstacles: tuple[Obstacle, ...],
+    seed: int,
+    client: PhysicsClient | None = None,
 ) -> PairDrive:
-    """Drive both robots of the pair through a world holding `obstacles`."""
+    """Drive both robots of the pair through a world holding `obstacles`, built in `client`
+    (see `run_scenario`)."""
     return PairDrive(
-        baseline=drive(spec, pair.baseline.profile, obstacles, seed),
-        candidate=drive(spec, pair.candidate.profile, obstacles, seed),
+        baseline=drive(spec, pair.baseline.profile, obstacles, seed, client),
+        candidate=drive(spec, pair.candidate.profile, obstacles, seed, client),
     )
 
 
 def drive(
-    spec: PairsFile, profile: LaserProfile, obstacles: tuple[Obstacle, ...], seed: int
+    spec: PairsFile,
+    profile: LaserProfile,
+    obstacles: tuple[Obstacle, ...],
+    seed: int,
+    client: PhysicsClient | None = None,
 ) -> Run:
     """One robot of the pairs file, carrying `profile`, through a world holding `obstacles`."""
     world = spec.world
     scenario = Scenario(
         spec.robot, profile, obstacles, world.start, world.route, world.time_limit, seed
     )
-    return run_scenario(scenario, ReactiveController)
+    return run_scenario(scenario, ReactiveController, client)
 
 
 def drive_lines(drives: PairDrive, pair: Pair) -> list[str]:

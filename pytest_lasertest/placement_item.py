@@ -16,7 +16,13 @@ import pytest
 from _pytest._code.code import TerminalRepr, TracebackStyle
 
 from pytest_lasertest.artifacts.files import artifact_path, write_json
-from pytest_lasertest.drive_item import CONTROL, DriveFailed, control_drive, drive_report
+from pytest_lasertest.drive_item import (
+    CONTROL,
+    DriveFailed,
+    control_drive,
+    drive_report,
+    physics_client,
+)
 from pytest_lasertest.drives import drive_pair
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.placement import (
@@ -87,7 +93,9 @@ class PlacementItem(pytest.Item):
 
     def _drive(self, witness: Witness) -> None:
         """Both robots through the world holding the witness; the policy judges the runs."""
-        drives = drive_pair(self.spec, self.pair, (witness.placement.obstacle,), self.options.seed)
+        obstacles = (witness.placement.obstacle,)
+        client = physics_client(self.config)
+        drives = drive_pair(self.spec, self.pair, obstacles, self.options.seed, client)
         self.user_properties += drives.properties()
         if drives.fails(self.options.policy):
             raise DriveFailed(

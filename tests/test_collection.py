@@ -13,6 +13,7 @@ from typing import NamedTuple
 import pytest
 
 from pytest_lasertest.placement import Placement, Scene, Verification, verify
+from pytest_lasertest.sim.client import connected_clients
 from tests.conftest import EXAMPLES, SIZE_PAIR
 
 
@@ -421,6 +422,15 @@ def test_a_candidate_that_fails_in_the_empty_world_fails_the_control_item_and_on
             "obstacle: see size[[]no-obstacle[]]",
         ]
     )
+
+
+def test_a_run_that_drives_leaves_no_physics_client_connected(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 2.0"))
+    result = pytester.runpytest("-k", "size and no-obstacle")
+    result.assert_outcomes(failed=1)
+    assert connected_clients() == 0
 
 
 def test_under_the_regression_policy_a_failure_the_baseline_shares_passes(

@@ -58,3 +58,16 @@ def test_the_husky_speeds_up_no_faster_than_its_acceleration_limit(step: float) 
 def test_a_command_beyond_the_top_speed_is_held_to_it() -> None:
     run = driven(Twist(3.0, 0.0), 0.01, 3.0)
     assert run[run[:, 0] >= 2.0, 1].mean() == pytest.approx(HUSKY.max_linear_velocity, rel=0.01)
+
+
+@pytest.mark.parametrize("step", TIME_STEPS)
+@pytest.mark.parametrize("command", [(0.5, 0.5), (0.5, -1.0), (0.3, 1.0), (1.0, 0.5)])
+def test_an_arc_is_driven_at_its_commanded_speed_and_turn_rate_within_three_percent(
+    command: tuple[float, float], step: float
+) -> None:
+    # Up to the reference controller's cruising speed and turn rate, and past them.
+    speed, turn_rate = command
+    run = driven(Twist(speed, turn_rate), step, 6.0)
+    steady = run[run[:, 0] >= 4.0]
+    assert steady[:, 1].mean() == pytest.approx(speed, rel=0.03)
+    assert steady[:, 2].mean() == pytest.approx(turn_rate, rel=0.03)

@@ -11,7 +11,7 @@ import pytest
 
 from pytest_lasertest.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D
 from pytest_lasertest.nav.reactive import ReactiveController
-from pytest_lasertest.sim.client import connected_clients
+from pytest_lasertest.sim.client import PhysicsClient, connected_clients
 from pytest_lasertest.sim.oracles import Referee, Rules
 from pytest_lasertest.sim.scenario import Caster, Scenario, run_scenario
 from pytest_lasertest.solver.plan import plan_pair
@@ -72,6 +72,18 @@ def test_a_scenario_run_five_times_gives_one_trajectory_bit_for_bit(thin_pole: C
     ]
     assert len({run.digest() for run in runs}) == 1
     assert runs[0].scans > 100
+
+
+def test_a_client_reset_for_each_world_drives_the_runs_of_fresh_clients_bit_for_bit(
+    thin_pole: Cylinder,
+) -> None:
+    box = Box(3.0, -0.4, 0.5, 0.4, 0.3, 1.0)
+    scenarios = [scenario("baseline", (thin_pole, box), seed=3), scenario("candidate", ())]
+    fresh = [run_scenario(each, ReactiveController).digest() for each in scenarios]
+    with PhysicsClient() as client:
+        reused = [run_scenario(each, ReactiveController, client).digest() for each in scenarios * 2]
+    assert reused == fresh * 2
+    assert connected_clients() == 0
 
 
 def test_a_candidate_in_the_empty_world_reaches_the_goal_in_the_nominal_time() -> None:

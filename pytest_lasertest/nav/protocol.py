@@ -34,22 +34,25 @@ class LaserScan:
     def points_in_base(self, within: float = math.inf) -> FloatArray:
         """Where each finite reading nearer than `within` m lies in the robot's base frame,
         shape (M, 2), m."""
-        beams = np.flatnonzero(np.abs(self.ranges) < within)
+        beams = (np.abs(self.ranges) < within).nonzero()[0]
         if not len(beams):
             return _NO_POINTS
-        angles = self.meta.angle_min + beams * self.meta.angle_increment
-        distances = self.ranges[beams]
-        in_laser = np.stack([distances * np.cos(angles), distances * np.sin(angles)])
-        turn, shift = _planar_mount(self.mount)
-        points: FloatArray = (turn @ in_laser).T + shift
+        directions, origin = _beam_directions(self.meta, self.mount, len(self.ranges))
+        points: FloatArray = self.ranges[beams][:, np.newaxis] * directions[beams] + origin
         return points
 
 
 @functools.cache
-def _planar_mount(mount: Pose3D) -> tuple[FloatArray, FloatArray]:
-    """The mount's rotation within the scan plane (2, 2) and its offset (2,) m: the scan plane
-    is level, so a point's height does not move it across the ground."""
-    return mount.rotation()[:2, :2], np.array(mount.xyz[:2])
+def _beam_directions(
+    meta: LaserScanMeta, mount: Pose3D, count: int
+) -> tuple[FloatArray, FloatArray]:
+    """The unit direction of each of the `count` beams in the base frame, shape (N, 2), and the
+    laser's position there (2,) m. The scan plane is level: only the mount's turn within it
+    matters."""
+    angles = meta.angle_min + np.arange(count) * meta.angle_increment
+    in_laser = np.stack([np.cos(angles), np.sin(angles)])
+    directions: FloatArray = (mount.rotation()[:2, :2] @ in_laser).T
+    return directions, np.array(mount.xyz[:2])
 
 
 @dataclass(frozen=True)

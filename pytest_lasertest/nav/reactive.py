@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pytest_lasertest.geometry import FloatArray, Point2D, wrap_angle
+from pytest_lasertest.geometry import FloatArray, Point2D
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 from pytest_lasertest.robot import Robot
 
@@ -52,8 +52,9 @@ class ReactiveController:
         self._turn_rate = robot.nominal_turn_rate  # rad/s
         swerve = self.settings.widest_swerve
         self._headings = np.linspace(-swerve, swerve, self.settings.headings)  # rad
-        self._along = np.stack([np.cos(self._headings), np.sin(self._headings)])
-        self._across = np.stack([-np.sin(self._headings), np.cos(self._headings)])
+        # Rows: a point's distance along each heading, then across it; one product for both.
+        cos, sin = np.cos(self._headings), np.sin(self._headings)
+        self._axes = np.vstack([np.column_stack([cos, sin]), np.column_stack([-sin, cos])])
         self._open = np.full(len(self._headings), np.inf)
         # Readings further than this from the base cannot narrow a path below the slow gap.
         self._relevant = math.hypot(self._front + self.settings.slow_gap, self._half_width)  # m
@@ -96,29 +97,39 @@ class ReactiveController:
         shape (H,), m; inf where no reading lies in it."""
         if not len(points):
             return self._open
-        along, across = points @ self._along, points @ self._across
-        in_path = (along > 0.0) & (np.abs(across) <= self._half_width)
-        nearest = np.where(in_path, along, np.inf).min(axis=0, initial=np.inf)
-        room: FloatArray = nearest - self._front
+        projected = self._axes @ points.T
+        count = len(self._headings)
+        along, across = projected[:count], projected[count:]
+        np.abs(across, out=across)
+        outside = across > self._half_width
+        outside |= along <= 0.0
+        np.putmask(along, outside, np.inf)
+        room: FloatArray = along.min(axis=1) - self._front
         return room
 
     def _choice(self, room: FloatArray, error: float, yaw: float) -> int:
         """The heading to drive: the one nearest the waypoint's among those clear for the slow
         gap, or else the clearest. Keeping to the last course counts too, so that an obstacle
         straight ahead is passed on one side, not dithered at."""
+        settings = self.settings
         if room is self._open:
             # Nothing near: no side to keep to, only the waypoint.
-            step = 2.0 * self.settings.widest_swerve / (self.settings.headings - 1)
-            nearest = round((error + self.settings.widest_swerve) / step)
-            return max(0, min(self.settings.headings - 1, nearest))
-        clear = room >= self.settings.slow_gap
+            step = 2.0 * settings.widest_swerve / (settings.headings - 1)
+            nearest = round((error + settings.widest_swerve) / step)
+            return max(0, min(settings.headings - 1, nearest))
+        clear = room >= settings.slow_gap
         if not clear.any():
             return int(np.argmax(room))
         cost = np.abs(self._headings - error)
         if self._last_course is not None:
-            change = wrap_angle(self._headings + yaw - self._last_course)
-            cost += self.settings.course_keeping * np.abs(change)
-        return int(np.argmin(np.where(clear, cost, np.inf)))
+            turned = _wrapped(yaw - self._last_course)
+            change = np.abs(self._headings + turned)
+            if abs(turned) + settings.widest_swerve > math.pi:
+                # A change past half a turn is the shorter way round.
+                change = np.minimum(change, 2.0 * math.pi - change)
+            cost += settings.course_keeping * change
+        np.putmask(cost, ~clear, np.inf)
+        return int(np.argmin(cost))
 
 
 def _wrapped(angle: float) -> float:

@@ -45,45 +45,35 @@ class Drive:
     def __init__(self, robot: Robot, wheels: WheelGeometry = HUSKY_WHEELS) -> None:
         self.robot = robot
         self.wheels = wheels
-        self.target = Twist(0.0, 0.0)
-        self._correction = Twist(0.0, 0.0)
+        # Plain floats, not Twists: the drive runs at every physics step.
+        self._target = (0.0, 0.0)  # m/s, rad/s
+        self._correction = (0.0, 0.0)  # m/s, rad/s
 
     def wheel_speeds(self, command: Twist, measured: Twist, step: float) -> tuple[float, float]:
         """Left and right wheel speeds (rad/s) for the next `step` seconds."""
-        limited = self._limited(command)
-        self.target = self._ramped(limited, step)
+        robot = self.robot
+        limited = (
+            _clamp(command.linear, robot.max_linear_velocity),
+            _clamp(command.angular, robot.max_angular_velocity),
+        )
+        linear, angular = self._target
+        self._target = linear, angular = (
+            linear + _clamp(limited[0] - linear, robot.max_linear_acceleration * step),
+            angular + _clamp(limited[1] - angular, robot.max_angular_acceleration * step),
+        )
         # Only a steady error is the loop's to remove: while the target ramps, the robot lags it
         # by design, and integrating that lag would overshoot.
-        gain = self.wheels.gain * step if self.target == limited else 0.0
-        self._correction = Twist(
-            self._correction.linear + gain * (self.target.linear - measured.linear),
-            self._correction.angular + gain * (self.target.angular - measured.angular),
+        gain = self.wheels.gain * step if self._target == limited else 0.0
+        self._correction = (
+            self._correction[0] + gain * (linear - measured.linear),
+            self._correction[1] + gain * (angular - measured.angular),
         )
-        linear = self.target.linear + self._correction.linear
-        angular = self.target.angular + self._correction.angular
+        linear += self._correction[0]
+        angular += self._correction[1]
         half_track = self.wheels.track / 2.0
         return (
             (linear - angular * half_track) / self.wheels.radius,
             (linear + angular * half_track) / self.wheels.radius,
-        )
-
-    def _limited(self, command: Twist) -> Twist:
-        """The command within the robot's top speeds."""
-        robot = self.robot
-        return Twist(
-            _clamp(command.linear, robot.max_linear_velocity),
-            _clamp(command.angular, robot.max_angular_velocity),
-        )
-
-    def _ramped(self, limited: Twist, step: float) -> Twist:
-        """The target moved toward a command within the top speeds by at most one step of the
-        robot's accelerations."""
-        robot = self.robot
-        return Twist(
-            self.target.linear
-            + _clamp(limited.linear - self.target.linear, robot.max_linear_acceleration * step),
-            self.target.angular
-            + _clamp(limited.angular - self.target.angular, robot.max_angular_acceleration * step),
         )
 
 

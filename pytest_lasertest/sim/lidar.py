@@ -9,7 +9,9 @@ for beam, and to `geometry.ray_distances`.
 from __future__ import annotations
 
 import bisect
+import itertools
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -22,6 +24,10 @@ from pytest_lasertest.geometry import (
     bounding_radius,
 )
 from pytest_lasertest.sensor import FULL_TURN, LaserProfile
+
+# The distance (m) every beam reads from inside an obstacle.
+_INSIDE = np.zeros(1)
+_INSIDE.setflags(write=False)
 
 
 def scan_rays(profile: LaserProfile, pose: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -45,137 +51,174 @@ class FlatLidar:
     """The scanner cast flat against a fixed set of obstacles, one scan at a time.
 
     Only the obstacles that reach above the scan plane are kept, and of each only the beams that
-    can touch its bounding circle are cast: every other beam is turned by more than
-    asin(reach / d) from the direction to a centre d away, so it misses that circle and all
-    inside it. The ranges equal those of casting every beam (a test holds them so).
+    can touch it are cast: those between the bearings of a cylinder's two tangents, and those
+    between the bearings of the two ends of each face of a box that faces the scanner. A beam in
+    such a window meets the face (or the circle) first, at a distance one cosine gives. The
+    ranges equal those of casting every beam with `geometry.ray_distances` (a test holds them
+    so).
     """
 
     def __init__(self, profile: LaserProfile, obstacles: tuple[Obstacle, ...]) -> None:
         self.profile = profile
         self.obstacles = tuple(o for o in obstacles if o.height > profile.scan_height)
         self._reach = [bounding_radius(obstacle) for obstacle in self.obstacles]
-        angles = profile.beam_angles_in_base()
-        self._angles = angles
-        # The beams by angle, twice round, so that a window across -pi is one slice.
-        order = np.argsort(angles, kind="stable")
-        self._order = np.tile(order, 2)
-        self._ring = [*angles[order].tolist(), *(angles[order] + FULL_TURN).tolist()]
+        self._faces = [_faces(o) if isinstance(o, Box) else () for o in self.obstacles]
+        self._count = profile.beam_count
         self._mount = profile.pose.xyz[:2]
-        self._nothing = np.full(profile.beam_count, np.inf)
+        angles = profile.beam_angles_in_base()
+        order = np.argsort(angles, kind="stable")
+        # The beams by angle, twice round, so that a window across -pi is one slice.
+        self._ring = np.concatenate([angles[order], angles[order] + FULL_TURN])
+        self._bisectable = self._ring.tolist()
+        # Beams in angle order, or (a scanner mounted upside down) in the reverse order, need no
+        # shuffle back into beam order.
+        self._reversed = bool(np.all(order == np.arange(len(order))[::-1]))
+        in_order = self._reversed or bool(np.all(order == np.arange(len(order))))
+        self._order: IntArray | None = None if in_order else order
+        self._nothing = np.full(len(self._ring), np.inf)
 
     def ranges(self, pose: FloatArray) -> FloatArray:
         """LaserScan ranges (N,) of the scan at robot pose [x, y, yaw], in beam order (REP 117)."""
-        x, y, yaw = (float(value) for value in pose)
-        cos, sin = math.cos(yaw), math.sin(yaw)
+        x, y, yaw = pose.tolist()
         mount_x, mount_y = self._mount
+        cos, sin = math.cos(yaw), math.sin(yaw)
         origin = (x + cos * mount_x - sin * mount_y, y + sin * mount_x + cos * mount_y)
-        ranges = self._nothing.copy()
-        for obstacle, reach in zip(self.obstacles, self._reach, strict=True):
-            distance = math.hypot(obstacle.x - origin[0], obstacle.y - origin[1])
-            if distance - reach > self.profile.range_max:
+        # Ranges by beam angle, twice round, as the windows are sliced.
+        ring = self._nothing.copy()
+        for obstacle, reach, faces in zip(self.obstacles, self._reach, self._faces, strict=True):
+            centre = math.hypot(obstacle.x - origin[0], obstacle.y - origin[1])
+            if centre - reach > self.profile.range_max:
                 continue
-            beams = self._beams_towards(origin, yaw, obstacle, reach, distance)
-            if len(beams):
-                hits = fan_distances(origin, yaw + self._angles[beams], obstacle)
-                ranges[beams] = np.minimum(ranges[beams], self._in_range(hits, distance, reach))
+            if isinstance(obstacle, Cylinder):
+                self._cast_cylinder(ring, origin, yaw, obstacle, centre)
+            else:
+                self._cast_box(ring, origin, yaw, faces, (centre, reach))
+        by_angle: FloatArray = np.minimum(ring[: self._count], ring[self._count :])
+        if self._order is None:
+            return by_angle[::-1] if self._reversed else by_angle
+        ranges = np.empty(self._count)
+        ranges[self._order] = by_angle
         return ranges
 
-    def _beams_towards(
+    def _cast_cylinder(
         self,
+        ring: FloatArray,
         origin: tuple[float, float],
         yaw: float,
-        obstacle: Obstacle,
-        reach: float,
-        distance: float,
-    ) -> IntArray:
-        """The beams that may touch the circle of radius `reach` around the obstacle's centre,
-        `distance` m from the scanner."""
-        half = math.asin(reach / distance) if distance > reach else math.pi
-        bearing = math.atan2(obstacle.y - origin[1], obstacle.x - origin[0])
-        low = (bearing - yaw - half + math.pi) % FULL_TURN - math.pi
-        first = bisect.bisect_left(self._ring, low)
-        last = bisect.bisect_right(self._ring, low + 2.0 * half)
-        beams: IntArray = self._order[first : min(last, first + self.profile.beam_count)]
-        return beams
+        cylinder: Cylinder,
+        centre: float,
+    ) -> None:
+        """Read the cylinder, its centre `centre` m away: a beam turned by theta from the bearing
+        of the centre enters at centre cos(theta) - sqrt(r^2 - centre^2 sin^2(theta))."""
+        circle = (centre, cylinder.radius)
+        if centre <= cylinder.radius:
+            self._mark(ring, slice(None), _INSIDE, circle)
+            return
+        bearing = math.atan2(cylinder.y - origin[1], cylinder.x - origin[0])
+        half = math.asin(cylinder.radius / centre)
+        window = self._window(bearing - half - yaw, 2.0 * half)
+        along = centre * np.cos(self._ring[window] + (yaw - bearing))
+        # Within the window the discriminant is >= 0 up to rounding, which would make it a NaN.
+        across = np.sqrt(np.maximum(along * along + (cylinder.radius**2 - centre**2), 0.0))
+        self._mark(ring, window, along - across, circle)
 
-    def _in_range(self, distances: FloatArray, centre: float, reach: float) -> FloatArray:
-        """Distances (K,) m to an obstacle whose centre is `centre` m away as LaserScan ranges:
-        +inf beyond range_max, -inf short of range_min; an obstacle wholly between the two is
-        read as it is."""
+    def _cast_box(
+        self,
+        ring: FloatArray,
+        origin: tuple[float, float],
+        yaw: float,
+        faces: tuple[_Face, ...],
+        circle: tuple[float, float],
+    ) -> None:
+        """Read each face of the box that faces the scanner: a beam turned by theta from the
+        face's inward normal meets it at (its distance) / cos(theta). `circle` is the distance
+        to the box's centre and its bounding radius (m)."""
+        inside = True
+        for face in faces:
+            distance = face.normal[0] * origin[0] + face.normal[1] * origin[1] - face.offset
+            if distance <= 0.0:
+                continue
+            inside = False
+            # The ends run counter-clockwise round the box, so clockwise as the scanner sees
+            # them: the face spans less than half a turn from the bearing of its last end.
+            first = math.atan2(face.ends[3] - origin[1], face.ends[2] - origin[0])
+            last = math.atan2(face.ends[1] - origin[1], face.ends[0] - origin[0])
+            window = self._window(first - yaw, (last - first) % FULL_TURN)
+            turned = self._ring[window] + (yaw - face.inward)
+            self._mark(ring, window, distance / np.cos(turned), circle)
+        if inside:
+            self._mark(ring, slice(None), _INSIDE, circle)
+
+    def _window(self, low: float, width: float) -> slice:
+        """The beams (on the ring) whose angles in the base frame lie in [low, low + width]."""
+        low = (low + math.pi) % FULL_TURN - math.pi
+        first = bisect.bisect_left(self._bisectable, low)
+        last = bisect.bisect_right(self._bisectable, low + width)
+        return slice(first, min(last, first + self._count))
+
+    def _mark(
+        self, ring: FloatArray, window: slice, distances: FloatArray, circle: tuple[float, float]
+    ) -> None:
+        """Keep the nearer of each beam's range and its distance (m) to an obstacle, read as
+        LaserScan ranges: +inf beyond range_max, -inf short of range_min. `circle`, the
+        obstacle's centre distance and bounding radius (m), says whether either can happen."""
         profile = self.profile
+        centre, reach = circle
         if centre + reach > profile.range_max:
             distances = np.where(distances > profile.range_max, np.inf, distances)
         if centre - reach < profile.range_min:
             distances = np.where(distances < profile.range_min, -np.inf, distances)
-        return distances
+        beams = ring[window]
+        np.minimum(beams, distances, out=beams)
 
 
-def fan_distances(
-    origin: tuple[float, float], angles: FloatArray, obstacle: Obstacle
-) -> FloatArray:
-    """Distance along each ray from one origin (m) at world angles (K,) rad to where it first
-    enters the obstacle's footprint, shape (K,) m: inf where it misses, 0 from inside.
+class _Face(NamedTuple):
+    """One side of a box's footprint: the line normal . p = offset, with the normal pointing out
+    of the box, and its ends in counter-clockwise order round the box."""
 
-    `geometry.ray_distances` for rays that share their origin, which leaves one scalar offset
-    and a few operations on (K,) arrays: the simulated laser casts it at every scan.
-    """
-    if isinstance(obstacle, Cylinder):
-        return _fan_to_cylinder(obstacle.x - origin[0], obstacle.y - origin[1], angles, obstacle)
-    cos, sin = math.cos(obstacle.yaw), math.sin(obstacle.yaw)
-    dx, dy = origin[0] - obstacle.x, origin[1] - obstacle.y
-    # The origin and the rays in the box's own frame.
-    local = (cos * dx + sin * dy, cos * dy - sin * dx)
-    return _fan_to_box(local, angles - obstacle.yaw, obstacle)
+    normal: tuple[float, float]
+    offset: float  # m
+    inward: float  # rad, the direction of -normal
+    ends: tuple[float, float, float, float]  # m, x0 y0 x1 y1
 
 
-def _fan_to_cylinder(dx: float, dy: float, angles: FloatArray, cylinder: Cylinder) -> FloatArray:
-    """Rays at `angles` from an origin (dx, dy) m short of the centre: each enters at
-    b - sqrt(r^2 - c^2), with b how far along it the centre lies and c how far across."""
-    cos, sin = np.cos(angles), np.sin(angles)
-    along = dx * cos + dy * sin
-    across = dx * sin - dy * cos
-    room = cylinder.radius**2 - across * across
-    near = along - np.sqrt(np.maximum(room, 0.0))
-    if dx * dx + dy * dy <= cylinder.radius**2:
-        return np.zeros_like(angles)
-    distances: FloatArray = np.where((room >= 0.0) & (along > 0.0), near, np.inf)
-    return distances
-
-
-def _fan_to_box(origin: tuple[float, float], angles: FloatArray, box: Box) -> FloatArray:
-    """Slab test of rays at `angles` (K,) from `origin`, both in the box's own frame."""
-    enter_x, leave_x = _fan_slab(origin[0], np.cos(angles), box.length / 2.0)
-    enter_y, leave_y = _fan_slab(origin[1], np.sin(angles), box.width / 2.0)
-    enter = np.maximum(np.maximum(enter_x, enter_y), 0.0)
-    distances: FloatArray = np.where(np.minimum(leave_x, leave_y) >= enter, enter, np.inf)
-    return distances
-
-
-def _fan_slab(position: float, steps: FloatArray, half: float) -> tuple[FloatArray, FloatArray]:
-    """Where rays from `position` with `steps` (K,) along one axis enter and leave |x| <= half.
-
-    A ray parallel to the slab is given a step of 1e-300: its interval is then (-huge, +huge)
-    from inside the slab and empty or out of range from outside, as it should be.
-    """
-    if not steps.all():
-        steps = np.where(steps == 0.0, 1e-300, steps)
-    inverse = 1.0 / steps
-    low, high = (-half - position) * inverse, (half - position) * inverse
-    return np.minimum(low, high), np.maximum(low, high)
+def _faces(box: Box) -> tuple[_Face, ...]:
+    """The four faces of the box's footprint."""
+    cos, sin = math.cos(box.yaw), math.sin(box.yaw)
+    half_length, half_width = box.length / 2.0, box.width / 2.0
+    corners = [
+        (box.x + cos * u - sin * v, box.y + sin * u + cos * v)
+        for u, v in (
+            (half_length, -half_width),
+            (half_length, half_width),
+            (-half_length, half_width),
+            (-half_length, -half_width),
+        )
+    ]
+    faces = []
+    for index, (start, end) in enumerate(itertools.pairwise([*corners, corners[0]])):
+        outward = box.yaw + index * math.pi / 2.0
+        normal = (math.cos(outward), math.sin(outward))
+        offset = normal[0] * start[0] + normal[1] * start[1]
+        faces.append(_Face(normal, offset, outward + math.pi, (*start, *end)))
+    return tuple(faces)
 
 
 def noisy(profile: LaserProfile, ranges: FloatArray, rng: np.random.Generator) -> FloatArray:
     """The ranges as the scanner reports them: Gaussian noise on in-range readings only, clamped
     to [range_min, range_max], then quantised to range.resolution when it is set."""
-    in_range = np.flatnonzero(np.isfinite(ranges))
+    in_range = np.isfinite(ranges).nonzero()[0]
     if not len(in_range):
         return ranges
     readings = ranges[in_range]
     if profile.noise is not None and profile.noise.stddev > 0.0:
-        noise = rng.normal(profile.noise.mean, profile.noise.stddev, len(in_range))
-        readings = np.clip(readings + noise, profile.range_min, profile.range_max)
+        readings += rng.normal(profile.noise.mean, profile.noise.stddev, len(in_range))
+        np.maximum(readings, profile.range_min, out=readings)
+        np.minimum(readings, profile.range_max, out=readings)
     if profile.range_resolution > 0.0:
-        readings = np.round(readings / profile.range_resolution) * profile.range_resolution
+        readings /= profile.range_resolution
+        np.rint(readings, out=readings)
+        readings *= profile.range_resolution
     reported = ranges.copy()
     reported[in_range] = readings
     return reported

@@ -129,10 +129,13 @@ class Referee:
         self.rules = rules
         self._goal = route[-1]
         corners = [(start.x, start.y), *((point.x, point.y) for point in route)]
-        self._legs = list(itertools.pairwise(corners))
-        lengths = [math.dist(a, b) for a, b in self._legs]
-        # The route's length from the end of each leg to the goal.
-        self._tails = [sum(lengths[index + 1 :]) for index in range(len(lengths))]
+        lengths = [math.dist(a, b) for a, b in itertools.pairwise(corners)]
+        self._legs = [
+            _Leg(a, b, length, sum(lengths[index + 1 :]))
+            for index, ((a, b), length) in enumerate(
+                zip(itertools.pairwise(corners), lengths, strict=True)
+            )
+        ]
         self._window_steps = max(1, round(rules.stuck_window / time_step))
         # The remaining route over the last window, oldest first.
         self._remaining: deque[float] = deque(maxlen=self._window_steps + 1)
@@ -167,10 +170,7 @@ class Referee:
     def _remaining_route(self, x: float, y: float) -> float:
         """How far the robot is from the goal along the route: over each leg, the way to its
         nearest point, then along it and the legs after it."""
-        return min(
-            _to_leg_end((x, y), start, end) + tail
-            for (start, end), tail in zip(self._legs, self._tails, strict=True)
-        )
+        return min(leg.remaining(x, y) for leg in self._legs)
 
     def _judge_progress(self, time: float, remaining: float) -> None:
         self._remaining.append(remaining)
@@ -182,14 +182,22 @@ class Referee:
             self._stuck = time
 
 
-def _to_leg_end(
-    point: tuple[float, float], start: tuple[float, float], end: tuple[float, float]
-) -> float:
-    """The way from a point to the leg's nearest point, then along the leg to its end (m)."""
-    length = math.dist(start, end)
-    along = (point[0] - start[0]) * (end[0] - start[0]) + (point[1] - start[1]) * (
-        end[1] - start[1]
-    )
-    fraction = min(1.0, max(0.0, along / length**2)) if length > 0.0 else 1.0
-    nearest = (start[0] + fraction * (end[0] - start[0]), start[1] + fraction * (end[1] - start[1]))
-    return math.dist(point, nearest) + (1.0 - fraction) * length
+@dataclass(frozen=True)
+class _Leg:
+    """A straight stretch of the route, and the route's length after it."""
+
+    start: tuple[float, float]  # m
+    end: tuple[float, float]  # m
+    length: float  # m
+    tail: float  # m, from its end to the goal
+
+    def remaining(self, x: float, y: float) -> float:
+        """The way from (x, y) to the leg's nearest point, then along the leg and its tail (m)."""
+        (start_x, start_y), (end_x, end_y) = self.start, self.end
+        fraction = 1.0
+        if self.length > 0.0:
+            along = (x - start_x) * (end_x - start_x) + (y - start_y) * (end_y - start_y)
+            fraction = min(1.0, max(0.0, along / self.length**2))
+        nearest_x = start_x + fraction * (end_x - start_x)
+        nearest_y = start_y + fraction * (end_y - start_y)
+        return math.hypot(x - nearest_x, y - nearest_y) + (1.0 - fraction) * self.length + self.tail

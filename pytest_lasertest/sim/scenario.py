@@ -20,7 +20,7 @@ from pytest_lasertest.geometry import FloatArray, Obstacle, Point2D, Pose2D
 from pytest_lasertest.nav.protocol import Controller, ControllerFactory, LaserScan, Odometry
 from pytest_lasertest.robot import Robot
 from pytest_lasertest.sensor import LaserProfile
-from pytest_lasertest.sim.client import PhysicsWorld
+from pytest_lasertest.sim.client import PhysicsClient, PhysicsWorld
 from pytest_lasertest.sim.drive import Drive, Twist
 from pytest_lasertest.sim.lidar import FlatLidar, noisy, ranges_from_fractions, scan_rays
 from pytest_lasertest.sim.oracles import Referee, Rules, Verdicts
@@ -72,11 +72,13 @@ class Run:
         return digest.hexdigest()
 
 
-def run_scenario(scenario: Scenario, make_controller: ControllerFactory) -> Run:
+def run_scenario(
+    scenario: Scenario, make_controller: ControllerFactory, client: PhysicsClient | None = None
+) -> Run:
     """Run the scenario with a fresh controller from `make_controller` until it is decided or
-    its time is up."""
+    its time is up, in `client` (reset for it) or in a client of its own."""
     controller = make_controller(scenario.robot, scenario.route)
-    with PhysicsWorld(scenario.start, scenario.obstacles, scenario.time_step) as world:
+    with PhysicsWorld(scenario.start, scenario.obstacles, scenario.time_step, client) as world:
         return _Runner(scenario, world, controller).run()
 
 
@@ -100,18 +102,20 @@ class _Runner:
         rows: list[tuple[float, ...]] = []
         command, scans = Twist(0.0, 0.0), 0
         pose = world.base_pose()
+        yaw = float(pose[2])
         for step in range(steps):
             time = step * scenario.time_step
-            measured = Twist(*world.base_twist(float(pose[2])))
+            measured = Twist(*world.base_twist(yaw))
             if self._scans_at(step) > scans:
                 command = Twist(*self._observe(time, pose, measured))
                 scans += 1
             world.step(*self.drive.wheel_speeds(command, measured, scenario.time_step))
             time += scenario.time_step
             pose = world.base_pose()
-            rows.append((time, *pose, command.linear, command.angular))
+            x, y, yaw = pose.tolist()
+            rows.append((time, x, y, yaw, command.linear, command.angular))
             clearance, touching = world.proximity(pose, scenario.rules.clearance_horizon)
-            if self.referee.update(time, float(pose[0]), float(pose[1]), clearance, touching):
+            if self.referee.update(time, x, y, clearance, touching):
                 break
         table = np.array(rows).reshape(-1, 6)
         return Run(
@@ -132,6 +136,6 @@ class _Runner:
         else:
             ranges = ranges_from_fractions(profile, self.world.cast(*scan_rays(profile, pose)))
         scan = LaserScan(time, noisy(profile, ranges, self.rng), self.meta, profile.pose)
-        x, y, yaw = (float(value) for value in pose)
+        x, y, yaw = pose.tolist()
         odometry = Odometry(x, y, yaw, measured.linear, measured.angular)
         return self.controller.observe(scan, odometry, time)
