@@ -285,37 +285,45 @@ def test_collection_does_not_load_z3_and_running_a_placement_item_does(
     assert (pytester.path / "z3.txt").read_text() == "False True"
 
 
+@pytest.fixture
+def paper_pairs(pytester: pytest.Pytester) -> Path:
+    """The paper's pairs file, whose size pair puts the thin pole in the 16-beam robot's way."""
+    path = pytester.path / "paper.lasertest.yaml"
+    shutil.copy(EXAMPLES / "paper.lasertest.yaml", path)
+    return path
+
+
 def test_the_sparser_scanner_drives_into_its_witness_and_the_denser_one_drives_past(
-    pytester: pytest.Pytester, placement_pairs: Path
+    pytester: pytest.Pytester, paper_pairs: Path
 ) -> None:
     result = pytester.runpytest(
-        "-k", "size", "-m", "placement", "--junitxml=report.xml", "--laser-seed=4"
+        "-k", "size and misses-1", "--junitxml=report.xml", "--laser-seed=1"
     )
     result.assert_outcomes(passed=1, failed=1)
     result.stdout.fnmatch_lines(
         [
-            "the candidate fails where witness candidate-misses-0 stands: the obstacle the "
+            "the candidate fails where witness candidate-misses-1 stands: the obstacle the "
             "baseline reads and the other scanner misses",
-            "  pair       size (gate.lasertest.yaml:10)",
-            "  obstacle   * m high",
+            "  pair       size (paper.lasertest.yaml:29)",
+            "  obstacle   cylinder of radius 0.025 m at * m high",
             "  baseline   clearpath_lms1xx_gazebo: passed: no collision, least clearance * mm; "
             "never stuck; goal reached at t = * s",
             "  candidate  clearpath_lms1xx_gazebo: FAILED: collided at t = * s; *",
             "  policy     candidate",
-            "  replay     pytest 'gate.lasertest.yaml::size[[]candidate-misses-0[]]' "
-            "--laser-seed=4 *",
+            "  replay     pytest 'paper.lasertest.yaml::size[[]candidate-misses-1[]]' "
+            "--laser-seed=1 *",
         ]
     )
     cases = junit_cases(pytester.path / "report.xml")
     for direction, detector in [("candidate-misses", "baseline"), ("baseline-misses", "candidate")]:
-        _, _, properties = cases[f"gate.lasertest.yaml::size[{direction}-0]"]
+        _, _, properties = cases[f"paper.lasertest.yaml::size[{direction}-1]"]
         assert properties["lasertest.detected_by"] == detector
         assert float(properties["lasertest.margin"]) >= 0.005
         assert float(properties["lasertest.lead"]) >= 0.0
         assert properties["lasertest.late"] in {"True", "False"}
         assert re.fullmatch(r"(box|cylinder) .* m high", properties["lasertest.obstacle"])
         assert properties["lasertest.baseline.collision"] == "pass"
-    sparse = cases["gate.lasertest.yaml::size[candidate-misses-0]"].properties
+    sparse = cases["paper.lasertest.yaml::size[candidate-misses-1]"].properties
     assert sparse["lasertest.candidate.collision"] == "fail"
     assert float(sparse["lasertest.candidate.collision_margin"]) <= 0.0
 
@@ -352,22 +360,21 @@ def test_not_placement_deselects_the_placement_items_and_not_coverage_the_covera
 
 
 def test_items_run_the_same_under_xdist_as_serially(
-    pytester: pytest.Pytester, placement_pairs: Path
+    pytester: pytest.Pytester, paper_pairs: Path
 ) -> None:
-    pytester.runpytest("--laser-seed=3", "--junitxml=serial.xml")
-    pytester.runpytest_subprocess("--laser-seed=3", "--junitxml=xdist.xml", "-n", "2")
+    selection = ("-k", "size", "--laser-seed=1")
+    pytester.runpytest(*selection, "--junitxml=serial.xml")
+    pytester.runpytest_subprocess(*selection, "--junitxml=xdist.xml", "-n", "2")
     serial = junit_cases(pytester.path / "serial.xml")
     distributed = junit_cases(pytester.path / "xdist.xml")
     assert serial == distributed
     assert {name: case.outcome for name, case in serial.items()} == {
-        "gate.lasertest.yaml::size[coverage]": "failure",
-        "gate.lasertest.yaml::size[no-obstacle]": "passed",
-        "gate.lasertest.yaml::size[candidate-misses-0]": "failure",
-        "gate.lasertest.yaml::size[baseline-misses-0]": "passed",
-        "gate.lasertest.yaml::same[coverage]": "passed",
-        "gate.lasertest.yaml::same[no-obstacle]": "passed",
-        "gate.lasertest.yaml::same[candidate-misses-0]": "skipped",
-        "gate.lasertest.yaml::same[baseline-misses-0]": "skipped",
+        "paper.lasertest.yaml::size[coverage]": "failure",
+        "paper.lasertest.yaml::size[no-obstacle]": "passed",
+        **{f"paper.lasertest.yaml::size[baseline-misses-{index}]": "passed" for index in range(3)},
+        "paper.lasertest.yaml::size[candidate-misses-0]": "passed",
+        "paper.lasertest.yaml::size[candidate-misses-1]": "failure",
+        "paper.lasertest.yaml::size[candidate-misses-2]": "passed",
     }
 
 

@@ -1,6 +1,10 @@
 """The reference controller: drive toward the goal, slow and steer away from readings in the
 robot's path, stop if blocked.
 
+Where nothing is in its way it drives the solver's nominal path: it turns on the spot toward
+each waypoint (at the start, and once it crosses the line through the last one), then drives
+straight at it.
+
 It remembers nothing it has seen: each command comes from the latest scan alone. A thin
 obstacle that falls between two beams as the robot closes in is, to it, gone. That is the
 weakness of a sparse scanner the paper's "size" pair exposes; the costmap of the full navigation
@@ -30,6 +34,11 @@ class ReactiveSettings:
     near_gap: float = 0.5  # m: a reading this near straight ahead slows the robot too
     heading_gain: float = 3.0  # 1/s, turn rate per rad of heading error
     turn_in_place: float = 1.6  # rad: a heading error above this is turned on the spot
+    aligned: float = 0.05  # rad: at the start and at each waypoint it turns on the spot to this
+    standstill: float = 0.05  # m/s: it turns on the spot only once slower than this
+    # A waypoint this near dead ahead is driven at straight: the heading error shrinks only as
+    # the robot closes in, and wheels at equal speeds cost PyBullet least to step.
+    dead_ahead: float = 0.01  # rad
     widest_swerve: float = 0.8  # rad: the headings weighed lie this far either side
     headings: int = 33  # how many headings are weighed
     course_keeping: float = 0.5  # weight of a change of course against a heading error
@@ -44,6 +53,11 @@ class ReactiveController:
         self.settings = settings or ReactiveSettings()
         self.route = route
         self.waypoint = 0
+        # Where the leg to the current waypoint began (m); None until the first odometry.
+        self._leg_start: tuple[float, float] | None = None
+        # Turning on the spot toward the current waypoint before setting off, as the nominal
+        # path does at the start and at each waypoint.
+        self._aligning = True
         self._last_course: float | None = None  # rad, in the odometry frame
         footprint = robot.footprint_array()
         self._front = float(footprint[:, 0].max())  # m
@@ -65,9 +79,19 @@ class ReactiveController:
         if error is None:
             return 0.0, 0.0
         settings = self.settings
-        if abs(error) > settings.turn_in_place:
+        self._aligning = self._aligning and abs(error) > settings.aligned
+        if self._aligning or abs(error) > settings.turn_in_place:
+            if abs(odometry.linear) > settings.standstill:
+                # A skid-steer robot told to turn while it rolls skids on along its course.
+                return 0.0, 0.0
             return 0.0, _clamp(settings.heading_gain * error, self._turn_rate)
         room = self._room(scan.points_in_base(within=self._relevant + _scan_offset(scan)))
+        if room is self._open:
+            # Nothing near: no side to keep to, only the waypoint, straight at it.
+            self._last_course = odometry.yaw + error
+            if abs(error) <= settings.dead_ahead:
+                return self._speed, 0.0
+            return self._speed, _clamp(settings.heading_gain * error, self._turn_rate)
         if room.max() <= settings.stop_gap:
             return 0.0, 0.0
         heading = self._choice(room, error, odometry.yaw)
@@ -83,14 +107,29 @@ class ReactiveController:
 
     def _heading_error(self, odometry: Odometry) -> float | None:
         """The turn toward the current waypoint (rad), or None once the goal is reached."""
-        while True:
-            target = self.route[self.waypoint]
-            dx, dy = target.x - odometry.x, target.y - odometry.y
-            if math.hypot(dx, dy) > self.settings.goal_tolerance:
-                return _wrapped(math.atan2(dy, dx) - odometry.yaw)
+        here = (odometry.x, odometry.y)
+        if self._leg_start is None:
+            self._leg_start = here
+        while self._reached(here):
             if self.waypoint == len(self.route) - 1:
                 return None
+            self._leg_start = (self.route[self.waypoint].x, self.route[self.waypoint].y)
             self.waypoint += 1
+            self._aligning = True
+        target = self.route[self.waypoint]
+        return _wrapped(math.atan2(target.y - here[1], target.x - here[0]) - odometry.yaw)
+
+    def _reached(self, here: tuple[float, float]) -> bool:
+        """Whether the robot at `here` is done with the current waypoint: within the goal
+        tolerance of the goal, or past the line across the leg through any other waypoint (as
+        the nominal path, it turns at the waypoint, not short of it)."""
+        target = self.route[self.waypoint]
+        if self.waypoint == len(self.route) - 1 or self._leg_start is None:
+            return math.dist(here, (target.x, target.y)) <= self.settings.goal_tolerance
+        start_x, start_y = self._leg_start
+        leg = (target.x - start_x, target.y - start_y)
+        done = (here[0] - start_x) * leg[0] + (here[1] - start_y) * leg[1]
+        return done >= leg[0] ** 2 + leg[1] ** 2
 
     def _room(self, points: FloatArray) -> FloatArray:
         """How far the robot's path along each weighed heading is clear beyond its front,
@@ -112,11 +151,6 @@ class ReactiveController:
         gap, or else the clearest. Keeping to the last course counts too, so that an obstacle
         straight ahead is passed on one side, not dithered at."""
         settings = self.settings
-        if room is self._open:
-            # Nothing near: no side to keep to, only the waypoint.
-            step = 2.0 * settings.widest_swerve / (settings.headings - 1)
-            nearest = round((error + settings.widest_swerve) / step)
-            return max(0, min(settings.headings - 1, nearest))
         clear = room >= settings.slow_gap
         if not clear.any():
             return int(np.argmax(room))

@@ -180,8 +180,12 @@ class PhysicsWorld:
             for body in near
             for point in pybullet.getClosestPoints(self.robot, body, within, physicsClientId=client)
         ]
+        # PyBullet keeps contact points a little before the shapes meet (its breaking
+        # threshold): only those at zero distance or less are touching.
         touching = any(
-            pybullet.getContactPoints(self.robot, body, physicsClientId=client) for body in near
+            point[8] <= 0.0
+            for body in near
+            for point in pybullet.getContactPoints(self.robot, body, physicsClientId=client)
         )
         return min(distances, default=within), touching
 

@@ -57,6 +57,7 @@ class Run:
     times: FloatArray  # (T,) s, at the end of each step
     poses: FloatArray  # (T, 3) base_footprint [x, y, yaw], m, m, rad
     commands: FloatArray  # (T, 2) the command being driven [forward m/s, turn rad/s]
+    wheels: FloatArray  # (T, 2) the wheel speeds that drove it [left, right], rad/s
     scans: int  # how many scans the controller was given
     verdicts: Verdicts
 
@@ -109,17 +110,24 @@ class _Runner:
             if self._scans_at(step) > scans:
                 command = Twist(*self._observe(time, pose, measured))
                 scans += 1
-            world.step(*self.drive.wheel_speeds(command, measured, scenario.time_step))
+            left, right = self.drive.wheel_speeds(command, measured, scenario.time_step)
+            world.step(left, right)
             time += scenario.time_step
             pose = world.base_pose()
             x, y, yaw = pose.tolist()
-            rows.append((time, x, y, yaw, command.linear, command.angular))
+            rows.append((time, x, y, yaw, command.linear, command.angular, left, right))
             clearance, touching = world.proximity(pose, scenario.rules.clearance_horizon)
             if self.referee.update(time, x, y, clearance, touching):
                 break
-        table = np.array(rows).reshape(-1, 6)
+        table = np.array(rows).reshape(-1, 8)
         return Run(
-            scenario, table[:, 0], table[:, 1:4], table[:, 4:6], scans, self.referee.verdicts()
+            scenario,
+            table[:, 0],
+            table[:, 1:4],
+            table[:, 4:6],
+            table[:, 6:8],
+            scans,
+            self.referee.verdicts(),
         )
 
     def _scans_at(self, step: int) -> int:
