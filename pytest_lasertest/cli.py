@@ -15,8 +15,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from pytest_lasertest.geometry import Pose3D
+from pytest_lasertest.path import NominalPath
 from pytest_lasertest.sensor import LaserProfile
-from pytest_lasertest.spec import SpecError, load_pairs_file
+from pytest_lasertest.spec import Pair, PairsFile, SpecError, load_pairs_file
 from pytest_lasertest.spec.bundled import bundled_robots
 from pytest_lasertest.spec.catalogue import load_catalogue
 from pytest_lasertest.spec.robot import load_robot_file
@@ -115,13 +116,21 @@ CATALOGUE_HEADER = (
 )
 
 
+def _driven_path(spec: PairsFile, pair: Pair) -> NominalPath:
+    """The path the gate's items plan on: the route timed by the baseline's obstacle-free run.
+    That run reads nothing, so its scan noise, and the seed, make no difference to it."""
+    from pytest_lasertest.drives import drive, solver_path
+
+    return solver_path(spec, drive(spec, pair.baseline.profile, (), seed=0))
+
+
 def print_plan(path: Path, *, as_json: bool) -> int:
     """Solve every pair of a pairs file and print the verified witnesses."""
     from pytest_lasertest.plan_report import plan_json, plan_text
     from pytest_lasertest.solver.plan import plan_pair
 
     spec = load_pairs_file(path)
-    plans = [plan_pair(spec, pair) for pair in spec.pairs]
+    plans = [plan_pair(spec, pair, _driven_path(spec, pair)) for pair in spec.pairs]
     if as_json:
         print(json.dumps({"pairs": [plan_json(plan) for plan in plans]}, indent=2))
     else:
@@ -145,7 +154,7 @@ def print_explain(path: Path, pair_name: str, witness_id: str, *, as_json: bool)
     if pair is None:
         names = ", ".join(pair.name for pair in spec.pairs)
         return _usage_error(f"no pair {pair_name!r} in {path}; pairs: {names}")
-    plan = plan_pair(spec, pair)
+    plan = plan_pair(spec, pair, _driven_path(spec, pair))
     witness = find_witness(plan, witness_id)
     if witness is None:
         ids = ", ".join(witness_ids(plan)) or "none"

@@ -3,6 +3,7 @@ both it and the placement items report.
 
 The control item drives both robots through the empty world. A candidate that fails there fails
 everywhere, so the pair's placement items then say so in one line and leave the report to it.
+The baseline's run also times the path the solver places the pair's witnesses along.
 Each process drives a pair's control run once and keeps it for the session; the runs are
 deterministic, so pytest-xdist workers that drive the same pair get the same runs.
 """

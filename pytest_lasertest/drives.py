@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from pytest_lasertest.geometry import Obstacle
 from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.options import Policy
+from pytest_lasertest.path import NominalPath, nominal_path, timed_to
 from pytest_lasertest.sensor import LaserProfile
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
@@ -74,6 +75,14 @@ def drive(
         spec.robot, profile, obstacles, world.start, world.route, world.time_limit, seed
     )
     return run_scenario(scenario, ReactiveController, client)
+
+
+def solver_path(spec: PairsFile, control: Run) -> NominalPath:
+    """The nominal path the solver plans on: the route's legs and turns, timed as `control`,
+    the baseline's obstacle-free run, drove them."""
+    world, robot = spec.world, spec.robot
+    path = nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
+    return timed_to(path, control.times, control.poses)
 
 
 def drive_lines(drives: PairDrive, pair: Pair) -> list[str]:

@@ -6,6 +6,7 @@ at its nominal speed. Time runs from 0 at the start pose; scanners scan at k / u
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -128,6 +129,54 @@ def nominal_path(
         clock += length / speed
         here, heading = waypoint, bearing
     return NominalPath(start, tuple(segments), speed, turn_rate)
+
+
+def timed_to(path: NominalPath, times: FloatArray, poses: FloatArray) -> NominalPath:
+    """The path with the clock of a run along it: times (T,) s and poses (T, 3) [x, y, yaw] of a
+    robot driving it. Each leg begins when the run's crossing of its middle says it did, at the
+    path's speed, and each turn ends as its leg begins; where the legs and turns lie is
+    unchanged. A leg the run never got half way along keeps its nominal time, as late as the
+    last timed leg.
+    """
+    retimed: list[Leg | Turn] = []
+    clock, delay = 0.0, 0.0  # s: the end of the last leg; how late it began
+    turn: Turn | None = None
+    finished: float | None = 0.0  # s: when the run got to the end of the last leg, if it did
+    for segment in path.segments:
+        if isinstance(segment, Turn):
+            turn = segment
+            continue
+        turning = abs(turn.angle) / path.turn_rate if turn else 0.0
+        middle = None
+        if finished is not None:
+            # Only what the run did after the last leg counts: a route may come back on itself.
+            run = times[times >= finished], poses[times >= finished]
+            middle = _crossing_time(segment, segment.length / 2.0, *run)
+            finished = _crossing_time(segment, segment.length, *run)
+        wanted = segment.begins + delay
+        if middle is not None:
+            wanted = middle - segment.length / 2.0 / path.speed
+        begins = max(wanted, clock + turning)
+        if turn:
+            retimed.append(dataclasses.replace(turn, begins=begins - turning))
+        retimed.append(dataclasses.replace(segment, begins=begins))
+        clock, delay, turn = begins + segment.length / path.speed, begins - segment.begins, None
+    return NominalPath(path.start, tuple(retimed), path.speed, path.turn_rate)
+
+
+def _crossing_time(leg: Leg, distance: float, times: FloatArray, poses: FloatArray) -> float | None:
+    """When the run first got `distance` m along the leg's line (s), between samples by linear
+    interpolation; None if it never did."""
+    heading = np.array([math.cos(leg.heading), math.sin(leg.heading)])
+    along = (poses[:, :2] - [leg.start.x, leg.start.y]) @ heading
+    reached = np.flatnonzero(along >= distance)
+    if not len(reached):
+        return None
+    after = int(reached[0])
+    if after == 0:
+        return float(times[0])
+    share = (distance - along[after - 1]) / (along[after] - along[after - 1])
+    return float(times[after - 1] + share * (times[after] - times[after - 1]))
 
 
 def scan_times(rate: float, until: float) -> FloatArray:

@@ -31,7 +31,7 @@ from pytest_lasertest.geometry import (
     ray_distances,
     segment_clearances,
 )
-from pytest_lasertest.path import NominalPath, scan_times, swept_polygons
+from pytest_lasertest.path import NominalPath, place, scan_times, swept_polygons
 from pytest_lasertest.robot import Robot
 from pytest_lasertest.sensor import LaserProfile
 
@@ -71,6 +71,12 @@ class Scene:
         """When the robot would stand if it started reacting at `anchor` (s)."""
         return anchor + self.robot.braking_distance / self.path.speed
 
+    def arrival(self) -> FloatArray:
+        """The robot's footprint at the goal, shape (V, 2), m: an obstacle there would stop any
+        robot short of the goal, whatever its scanner."""
+        goal = self.path.poses_at(np.array([self.path.duration]))[0]
+        return place(self.robot.footprint_array(), goal)
+
 
 @dataclass(frozen=True)
 class Placement:
@@ -88,7 +94,7 @@ class Verification:
 
     detection: float  # m, how deep the detector's best beam passes inside, or its height margin
     concealment: float  # m, how far clear the misser's nearest beam stays, up to the anchor
-    clearance: float  # m, between the obstacle and the robot until it stands
+    clearance: float  # m, between the obstacle and the robot until it stands, and at the goal
     obstruction: float  # m, how deep the obstacle reaches into the footprint swept after
     seen_by_misser_at: tuple[float, ...]  # s, misser scans up to `until` that fail to miss
     lead: float  # m of path from the anchor to `until`
@@ -119,7 +125,10 @@ def verify(scene: Scene, placement: Placement, last: float | None = None) -> Ver
     return Verification(
         detection=detection,
         concealment=float(np.min(concealments)),
-        clearance=stopping_clearance(scene, obstacle, placement.anchor),
+        clearance=min(
+            stopping_clearance(scene, obstacle, placement.anchor),
+            polygon_clearance(scene.arrival(), obstacle),
+        ),
         obstruction=max((-polygon_clearance(piece, obstacle) for piece in after), default=-np.inf),
         seen_by_misser_at=tuple(float(t) for t in times[concealments < REQUIRED_MARGIN]),
         lead=scene.path.travelled(placement.until) - scene.path.travelled(placement.anchor),

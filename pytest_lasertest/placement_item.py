@@ -23,7 +23,7 @@ from pytest_lasertest.drive_item import (
     drive_report,
     physics_client,
 )
-from pytest_lasertest.drives import drive_pair
+from pytest_lasertest.drives import drive_pair, solver_path
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.placement import (
     DIRECTIONS,
@@ -111,7 +111,8 @@ class PlacementItem(pytest.Item):
         if key not in plans:
             from pytest_lasertest.solver.plan import plan_pair
 
-            plans[key] = plan_pair(self.spec, self.pair)
+            control = control_drive(self.config, self.spec, self.pair)
+            plans[key] = plan_pair(self.spec, self.pair, solver_path(self.spec, control.baseline))
         return plans[key]
 
     def _record(self, witness: Witness, verification: Verification) -> None:

@@ -8,7 +8,16 @@ import numpy as np
 import pytest
 
 from pytest_lasertest.geometry import Point2D, Pose2D
-from pytest_lasertest.path import Leg, Turn, nominal_path, place, scan_times, swept_polygons
+from pytest_lasertest.path import (
+    Leg,
+    NominalPath,
+    Turn,
+    nominal_path,
+    place,
+    scan_times,
+    swept_polygons,
+    timed_to,
+)
 
 FOOTPRINT = np.array([[-0.5, -0.3], [0.5, -0.3], [0.5, 0.3], [-0.5, 0.3]])
 
@@ -62,3 +71,34 @@ def _contains(polygon: np.ndarray, points: np.ndarray) -> bool:
         if np.any(cross < -1e-9):
             return False
     return True
+
+
+def _late_run(path: NominalPath, times: np.ndarray, late: float) -> np.ndarray:
+    """The poses (T, 3) of a run that does what the path does, `late` s later."""
+    return path.poses_at(np.maximum(times - late, 0.0))
+
+
+def test_a_run_that_sets_off_late_times_the_path_by_when_it_crosses_each_leg() -> None:
+    route = (Point2D(4, 0), Point2D(4, 4))
+    path = nominal_path(Pose2D(0, 0, 0), route, speed=1.0, turn_rate=1.0)
+    times = np.arange(0.0, 20.0, 0.02)
+    timed = timed_to(path, times, _late_run(path, times, late=0.5))
+
+    first, turn, second = timed.segments
+    assert first.begins == pytest.approx(0.5, abs=0.02)
+    assert second.begins == pytest.approx(path.segments[2].begins + 0.5, abs=0.02)
+    assert turn.begins + abs(turn.angle) / path.turn_rate == pytest.approx(second.begins)
+    # Where the legs and turns lie is the path's own.
+    assert timed.polyline() == path.polyline()
+
+
+def test_a_leg_the_run_never_reached_keeps_its_nominal_time_as_late_as_the_last() -> None:
+    # Out and back: the way back begins where the way out began, so only a run that has got
+    # to the far end may time it.
+    route = (Point2D(4, 0), Point2D(0, 0))
+    path = nominal_path(Pose2D(0, 0, 0), route, speed=1.0, turn_rate=1.0)
+    times = np.arange(0.0, 3.0, 0.02)  # the run stops after 3 s, 2.5 m out
+    out, _, back = timed_to(path, times, _late_run(path, times, late=0.5)).segments
+
+    assert out.begins == pytest.approx(0.5, abs=0.02)
+    assert back.begins == pytest.approx(path.segments[2].begins + 0.5, abs=0.02)

@@ -12,6 +12,7 @@ import pytest
 
 from pytest_lasertest.drives import drive
 from pytest_lasertest.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D
+from pytest_lasertest.nav.protocol import LaserScan
 from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.sim.client import PhysicsClient, connected_clients
 from pytest_lasertest.sim.oracles import Referee, Rules
@@ -221,3 +222,27 @@ def test_many_runs_in_one_process_leak_no_client_and_little_memory(thin_pole: Cy
         grown = _resident_bytes() - before
     assert connected_clients() == 0
     assert grown < 5 * 2**20
+
+
+def test_a_pole_the_lms111_passes_nearer_than_its_range_min_still_keeps_it_clear() -> None:
+    # The Husky example's second leg, and a pole the LMS111 reads from afar; within 0.5 m of the
+    # laser it reads -inf, which the controller keeps as something at range_min.
+    husky = load_pairs_file(EXAMPLES / "husky.lasertest.yaml")
+    lms111 = next(p for p in husky.pairs if p.name == "lms111_to_tim571_raised").baseline.profile
+    pole = Cylinder(6.207, 3.410, 0.02535, 0.328)
+    world = husky.world
+    for seed in range(3):
+        scenario = Scenario(husky.robot, lms111, (pole,), world.start, world.route, 40.0, seed)
+        run = run_scenario(scenario, ReactiveController)
+        assert run.passed, run.verdicts.failures()
+
+
+def test_points_too_near_to_range_are_placed_at_range_min_only_when_asked() -> None:
+    profile = SIZE.baseline.profile
+    ranges = np.full(profile.beam_count, np.inf)
+    ranges[profile.beam_count // 2] = -np.inf
+    scan = LaserScan(0.0, ranges, profile.to_laserscan_meta(), profile.pose)
+    assert len(scan.points_in_base()) == 0
+    (point,) = scan.points_in_base(too_near=True)
+    mount = np.array(profile.pose.xyz[:2])
+    assert np.linalg.norm(point - mount) == pytest.approx(profile.range_min)

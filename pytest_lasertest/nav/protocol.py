@@ -31,14 +31,18 @@ class LaserScan:
     meta: LaserScanMeta
     mount: Pose3D  # the laser frame in the robot's base_footprint
 
-    def points_in_base(self, within: float = math.inf) -> FloatArray:
+    def points_in_base(self, within: float = math.inf, too_near: bool = False) -> FloatArray:
         """Where each finite reading nearer than `within` m lies in the robot's base frame,
-        shape (M, 2), m."""
-        beams = (np.abs(self.ranges) < within).nonzero()[0]
+        shape (M, 2), m; with `too_near`, also each reading nearer than range_min (-inf),
+        placed at range_min: something is there, at most that far."""
+        ranges = self.ranges
+        if too_near:
+            ranges = np.where(ranges == -np.inf, self.meta.range_min, ranges)
+        beams = (np.abs(ranges) < within).nonzero()[0]
         if not len(beams):
             return _NO_POINTS
-        directions, origin = _beam_directions(self.meta, self.mount, len(self.ranges))
-        points: FloatArray = self.ranges[beams][:, np.newaxis] * directions[beams] + origin
+        directions, origin = _beam_directions(self.meta, self.mount, len(ranges))
+        points: FloatArray = ranges[beams][:, np.newaxis] * directions[beams] + origin
         return points
 
 

@@ -85,7 +85,8 @@ class ReactiveController:
                 # A skid-steer robot told to turn while it rolls skids on along its course.
                 return 0.0, 0.0
             return 0.0, _clamp(settings.heading_gain * error, self._turn_rate)
-        room = self._room(scan.points_in_base(within=self._relevant + _scan_offset(scan)))
+        reach = self._relevant + _scan_offset(scan)
+        room = self._room(scan.points_in_base(within=reach, too_near=True))
         if room is self._open:
             # Nothing near: no side to keep to, only the waypoint, straight at it.
             self._last_course = odometry.yaw + error

@@ -6,7 +6,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from pytest_lasertest.path import nominal_path
+from pytest_lasertest.path import NominalPath, nominal_path
 from pytest_lasertest.placement import (
     DIRECTIONS,
     Direction,
@@ -144,12 +144,13 @@ def plan_direction(scene: Scene, direction: Direction, settings: SearchSettings)
     return DirectionSearch(scene, direction, settings).run()
 
 
-def plan_pair(spec: PairsFile, pair: Pair) -> PairPlan:
-    """Both directions of one pair of a pairs file."""
+def plan_pair(spec: PairsFile, pair: Pair, path: NominalPath | None = None) -> PairPlan:
+    """Both directions of one pair of a pairs file, along `path` (by default the route's nominal
+    path, timed at the robot's nominal speed and turn rate)."""
     robot = spec.robot
-    path = nominal_path(
-        spec.world.start, spec.world.route, robot.nominal_speed, robot.nominal_turn_rate
-    )
+    if path is None:
+        world = spec.world
+        path = nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
     scene = Scene(pair.baseline.profile, pair.candidate.profile, robot, path)
     settings = SearchSettings(
         witnesses=spec.settings.witnesses,

@@ -110,7 +110,8 @@ class Query:
         return Solution("unknown", {}, reason=f"{MAX_REFINEMENTS} refinements did not converge")
 
     def scene_blocks(self) -> dict[str, str]:
-        """Size bounds, the detector's reading through the seed, and the robot's room to stop."""
+        """Size bounds, the detector's reading through the seed, the robot's room to stop, and
+        the goal left free."""
         scene, shape, point = self.scene, self.shape, np.array(self.seed.point)
         stands = scene.standstill(self.anchor)
         before = swept_polygons(scene.path, scene.robot.footprint_array(), 0.0, stands)
@@ -118,6 +119,7 @@ class Query:
             "bounds": bounds(self.settings),
             "detector": all_of([shape.holds(point), *self._reading()]),
             "robot": all_of([shape.beyond(_separating(piece, point, shape)) for piece in before]),
+            "goal": shape.beyond(_separating(scene.arrival(), point, shape)),
         }
 
     def user_blocks(self) -> dict[str, str]:

@@ -86,13 +86,13 @@ def candidates(scene: Scene, direction: Direction, anchor: float, needed: float)
 def _room_up_to_anchor(
     scene: Scene, direction: Direction, anchor: float, points: FloatArray
 ) -> FloatArray:
-    """Room (P,) m, to the robot until it stands and to the misser's scans at the start and just
-    before the anchor."""
+    """Room (P,) m, to the robot until it stands, to the robot at the goal, and to the misser's
+    scans at the start and just before the anchor."""
     footprint = scene.robot.footprint_array()
     before = swept_polygons(scene.path, footprint, 0.0, scene.standstill(anchor))
     first_and_last = np.array([0.0, scan_times(scene.misser(direction).update_rate, anchor)[-1]])
     room: FloatArray = np.minimum(
-        np.min([_outside_by(piece, points) for piece in before], axis=0),
+        np.min([_outside_by(piece, points) for piece in [*before, scene.arrival()]], axis=0),
         rooms_at(scene, direction, first_and_last, points).min(axis=0),
     )
     return room
