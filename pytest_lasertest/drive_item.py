@@ -38,8 +38,8 @@ class DriveFailed(Exception):
 
 
 def physics_client(config: pytest.Config) -> PhysicsClient:
-    """The process's physics client, which every drive resets and builds its world in: a client
-    of its own would cost each run 10 ms to connect."""
+    """The process's physics client, which every drive resets and builds its world in (see
+    `PhysicsClient` for what a client of its own would cost each run)."""
     if PHYSICS_KEY not in config.stash:
         client = PhysicsClient()
         config.stash[PHYSICS_KEY] = client

@@ -81,22 +81,30 @@ class ReactiveController:
         settings = self.settings
         self._aligning = self._aligning and abs(error) > settings.aligned
         if self._aligning or abs(error) > settings.turn_in_place:
-            if abs(odometry.linear) > settings.standstill:
-                # A skid-steer robot told to turn while it rolls skids on along its course.
-                return 0.0, 0.0
-            return 0.0, _clamp(settings.heading_gain * error, self._turn_rate)
+            return self._turn_on_the_spot(error, odometry)
         reach = self._relevant + _scan_offset(scan)
         room = self._room(scan.points_in_base(within=reach, too_near=True))
         if room is self._open:
             # Nothing near: no side to keep to, only the waypoint, straight at it.
             self._last_course = odometry.yaw + error
-            if abs(error) <= settings.dead_ahead:
-                return self._speed, 0.0
-            return self._speed, _clamp(settings.heading_gain * error, self._turn_rate)
+            turn = 0.0 if abs(error) <= settings.dead_ahead else settings.heading_gain * error
+            return self._speed, _clamp(turn, self._turn_rate)
         if room.max() <= settings.stop_gap:
             return 0.0, 0.0
-        heading = self._choice(room, error, odometry.yaw)
-        self._last_course = odometry.yaw + float(self._headings[heading])
+        return self._around(room, error, odometry.yaw)
+
+    def _turn_on_the_spot(self, error: float, odometry: Odometry) -> tuple[float, float]:
+        """Turn toward the waypoint, once standing: a skid-steer robot told to turn while it
+        rolls skids on along its course."""
+        if abs(odometry.linear) > self.settings.standstill:
+            return 0.0, 0.0
+        return 0.0, _clamp(self.settings.heading_gain * error, self._turn_rate)
+
+    def _around(self, room: FloatArray, error: float, yaw: float) -> tuple[float, float]:
+        """Along the heading `_choice` picks among readings in the way."""
+        settings = self.settings
+        heading = self._choice(room, error, yaw)
+        self._last_course = yaw + float(self._headings[heading])
         turn = settings.heading_gain * float(self._headings[heading])
         # The chosen path's room sets the pace; the room straight ahead, where the robot still
         # points while it turns, may cut it to a crawl or to turning on the spot.

@@ -50,9 +50,10 @@ def load_pybullet() -> ModuleType:
 class PhysicsClient:
     """A DIRECT physics client to build worlds in, one after another.
 
-    Connecting a client costs about 10 ms, resetting one 0.2 ms: a process that runs many
-    scenarios keeps one client and resets it for each world. Use it as a context manager: it
-    disconnects on exit.
+    Connecting a client costs up to 10 ms and resetting one 0.2 ms, and PyBullet leaks about
+    0.3 MB for each client connected and disconnected while another stays connected: a process
+    that runs many scenarios keeps one client and resets it for each world. Use it as a context
+    manager: it disconnects on exit.
     """
 
     def __init__(self) -> None:
@@ -137,7 +138,7 @@ class PhysicsWorld:
             self.robot,
             WHEELS,
             pybullet.VELOCITY_CONTROL,
-            targetVelocities=(left, left, right, right),
+            targetVelocities=(left,) * len(LEFT_WHEELS) + (right,) * len(RIGHT_WHEELS),
             forces=WHEEL_TORQUES,
             physicsClientId=self._client,
         )
