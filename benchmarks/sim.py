@@ -1,16 +1,16 @@
 """How fast a robot run simulates, against bare PyBullet stepping, measured side by side.
 
 Each robot run drives the Husky with the paper's 720-beam, 50 Hz scanner and the reference
-controller for 30 s of simulated time, in an empty world or past obstacles beside its route.
-Right after each run, the same world (robot, ground, obstacles) is stepped bare through the
-wheel speeds the run drove: the same physics, with no scans, no controller and no oracles. That
-is the floor a run cannot beat. (Stepping wheels held at one speed instead costs PyBullet about
+controller for 30 s of simulated time, in an empty world, past one obstacle beside its route (as
+a placement item drives) or past four. Right after each run, the same world (robot, ground,
+obstacles) is stepped bare through the wheel speeds the run drove: the same physics, with no
+scans, no controller and no oracles. That is the floor a run cannot beat. (Stepping wheels held at one speed instead costs PyBullet about
 15 % more, which would flatter the ratio.) Then many short runs in one process check that
 memory and physics clients are released. Every world is built in one physics client, reset for
 it, as the plugin does. The last line reads `real-time factor: R; ratio to bare physics: Q`
 (medians).
 
-    python benchmarks/sim.py [--runs 6] [--memory-runs 1000]
+    python benchmarks/sim.py [--runs 9] [--memory-runs 1000]
 """
 
 from __future__ import annotations
@@ -35,6 +35,8 @@ ROUTE = (Point2D(30.0, 0.0),)  # beyond what 30 s at 0.5 m/s reaches: the run la
 # Beside the route, inside the scanner's range for most of the run.
 SCENES: dict[str, tuple[Obstacle, ...]] = {
     "empty": (),
+    # What a placement item drives past: one obstacle near the route.
+    "one beside the route": (Box(6.0, 0.8, 0.3, 0.4, 0.4, 1.0),),
     "beside the route": (
         Box(4.0, 1.6, 0.3, 0.6, 0.4, 1.0),
         Cylinder(7.0, -1.5, 0.1, 1.0),
@@ -46,7 +48,7 @@ SCENES: dict[str, tuple[Obstacle, ...]] = {
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--runs", type=int, default=6, help="robot runs, taking turns by scene")
+    parser.add_argument("--runs", type=int, default=9, help="robot runs, taking turns by scene")
     parser.add_argument("--memory-runs", type=int, default=1000)
     args = parser.parse_args()
     factors, ratios = [], []
