@@ -4,11 +4,11 @@ Each robot run drives the Husky with the paper's 720-beam, 50 Hz scanner and the
 controller for 30 s of simulated time, in an empty world, past one obstacle beside its route (as
 a placement item drives) or past four. Right after each run, the same world (robot, ground,
 obstacles) is stepped bare through the wheel speeds the run drove: the same physics, with no
-scans, no controller and no oracles. That is the floor a run cannot beat. (Stepping wheels held at one speed instead costs PyBullet about
-15 % more, which would flatter the ratio.) Then many short runs in one process check that
-memory and physics clients are released. Every world is built in one physics client, reset for
-it, as the plugin does. The last line reads `real-time factor: R; ratio to bare physics: Q`
-(medians).
+scans, no controller and no oracles. That is the floor a run cannot beat. (Stepping wheels held
+at one speed instead costs PyBullet about 15 % more, which would flatter the ratio.) Then many
+short runs in one process check that memory and physics clients are released. Every world is
+built in one physics client, reset for it, as the plugin does. The last line reads
+`real-time factor: R; ratio to bare physics: Q` (medians).
 
     python benchmarks/sim.py [--runs 9] [--memory-runs 1000]
 """
