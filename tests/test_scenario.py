@@ -232,12 +232,12 @@ def test_a_pole_the_lms111_passes_nearer_than_its_range_min_still_keeps_it_clear
     pole = Cylinder(6.207, 3.410, 0.02535, 0.328)
     world = husky.world
     for seed in range(3):
-        scenario = Scenario(husky.robot, lms111, (pole,), world.start, world.route, 40.0, seed)
-        run = run_scenario(scenario, ReactiveController)
+        past_the_pole = Scenario(husky.robot, lms111, (pole,), world.start, world.route, 40.0, seed)
+        run = run_scenario(past_the_pole, ReactiveController)
         assert run.passed, run.verdicts.failures()
 
 
-def test_points_too_near_to_range_are_placed_at_range_min_only_when_asked() -> None:
+def test_readings_nearer_than_range_min_become_points_at_range_min_only_when_asked() -> None:
     profile = SIZE.baseline.profile
     ranges = np.full(profile.beam_count, np.inf)
     ranges[profile.beam_count // 2] = -np.inf
