@@ -229,9 +229,10 @@ def _overlap(shift: int, cells: int) -> slice:
 
 
 def lethal_distances(lethal: npt.NDArray[np.bool_], reach: int) -> FloatArray:
-    """Each cell's distance in cells to the nearest lethal cell, shape (N, N); inf beyond `reach`.
+    """Each cell's distance in cells to the nearest lethal cell, shape (N, N): exact up to
+    `reach`, and more than `reach` (or inf) beyond it.
 
-    Exact and separable: the distance down each column first, then the least of
+    Separable: the distance along each column first, then the least of
     dx^2 + column distance^2 over the columns within `reach` either side.
     """
     rows = lethal.shape[0]
