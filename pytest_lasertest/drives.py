@@ -37,9 +37,7 @@ class PairDrive:
         """Each oracle's margin and outcome for both robots, for JUnit XML and pytest-xdist."""
         rows: list[tuple[str, object]] = []
         for side, run in (("baseline", self.baseline), ("candidate", self.candidate)):
-            verdicts = run.verdicts
-            for oracle in ("collision", "stuck", "goal"):
-                verdict = getattr(verdicts, oracle)
+            for oracle, verdict in run.verdicts.named():
                 rows.append((f"lasertest.{side}.{oracle}", "pass" if verdict.passed else "fail"))
                 margin = round(float(verdict.margin), 4)  # m; a plain float crosses to xdist
                 rows.append((f"lasertest.{side}.{oracle}_margin", margin))
@@ -90,10 +88,7 @@ def drive_lines(drives: PairDrive, pair: Pair) -> list[str]:
     lines = []
     for side, run in (("baseline", drives.baseline), ("candidate", drives.candidate)):
         scanner = getattr(pair, side)
-        verdicts = run.verdicts
-        outcome = "; ".join(
-            verdict.describe() for verdict in (verdicts.collision, verdicts.stuck, verdicts.goal)
-        )
+        outcome = "; ".join(verdict.describe() for _, verdict in run.verdicts.named())
         lines.append(
             f"  {side:<10} {scanner.label}: {'passed' if run.passed else 'FAILED'}: {outcome}"
         )

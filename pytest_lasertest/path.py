@@ -181,8 +181,13 @@ def _crossing_time(leg: Leg, distance: float, times: FloatArray, poses: FloatArr
 
 def scan_times(rate: float, until: float) -> FloatArray:
     """A scanner's scan instants k / rate from 0 up to and including `until`, shape (K,), s."""
-    count = math.floor(until * rate + 1e-9) + 1
-    return np.arange(count) / rate
+    return np.arange(scan_count(rate, until)) / rate
+
+
+def scan_count(rate: float, until: float) -> int:
+    """How many scans a scanner at `rate` Hz takes from 0 up to and including `until` s."""
+    # The small slack keeps a scan due at exactly `until` from rounding down.
+    return math.floor(until * rate + 1e-9) + 1
 
 
 def swept_polygons(

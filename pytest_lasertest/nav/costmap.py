@@ -27,6 +27,7 @@ import numpy.typing as npt
 
 from pytest_lasertest.geometry import FloatArray, IntArray
 from pytest_lasertest.nav.protocol import LaserScan
+from pytest_lasertest.path import place
 
 FREE, INSCRIBED, LETHAL = 0, 253, 254
 # costmap_2d's laserScanValidInfCallback: a tenth of a millimetre short of range_max.
@@ -106,11 +107,9 @@ class Costmap:
             ranges = np.where(ranges == np.inf, meta.range_max - INF_EPSILON, ranges)
         kept = (ranges >= meta.range_min) & (ranges < meta.range_max)
         projected = LaserScan(scan.stamp, np.where(kept, ranges, np.inf), meta, scan.mount)
-        x, y, yaw = robot
-        turn = np.array([[math.cos(yaw), -math.sin(yaw)], [math.sin(yaw), math.cos(yaw)]])
-        laser = turn @ np.array(scan.mount.xyz[:2]) + (x, y)
-        points: FloatArray = projected.points_in_base() @ turn.T + (x, y)
-        return (float(laser[0]), float(laser[1])), points
+        pose = np.array(robot)
+        laser = place(np.array([scan.mount.xyz[:2]]), pose)[0]
+        return (float(laser[0]), float(laser[1])), place(projected.points_in_base(), pose)
 
     def _follow(self, x: float, y: float) -> None:
         """Centre the window on (x, y) by whole cells, keeping the cells it still covers."""
@@ -171,9 +170,7 @@ class Costmap:
     def _free_footprint(self, robot: tuple[float, float, float]) -> None:
         """Free the cells the footprint at pose [x, y, yaw] covers: each column between its
         outline's lowest and highest cell, as costmap_2d's convexFillCells does."""
-        x, y, yaw = robot
-        cos, sin = math.cos(yaw), math.sin(yaw)
-        corners = self.footprint @ np.array([[cos, sin], [-sin, cos]]) + (x, y)
+        corners = place(self.footprint, np.array(robot))
         cell_x, cell_y, _ = self.cell_of(corners)
         outline_x, outline_y = [], []
         for index in range(len(corners)):

@@ -115,9 +115,13 @@ class Verdicts:
     def passed(self) -> bool:
         return self.collision.passed and self.stuck.passed and self.goal.passed
 
+    def named(self) -> tuple[tuple[str, Collision | Stuck | Goal], ...]:
+        """Each oracle's name and verdict, in the order they are judged."""
+        return (("collision", self.collision), ("stuck", self.stuck), ("goal", self.goal))
+
     def failures(self) -> list[str]:
         """The failing oracles, described, in the order they are judged."""
-        return [v.describe() for v in (self.collision, self.stuck, self.goal) if not v.passed]
+        return [verdict.describe() for _, verdict in self.named() if not verdict.passed]
 
 
 class Referee:

@@ -18,6 +18,7 @@ import numpy as np
 
 from pytest_lasertest.geometry import FloatArray, Obstacle, Point2D, Pose2D
 from pytest_lasertest.nav.protocol import Controller, ControllerFactory, LaserScan, Odometry
+from pytest_lasertest.path import scan_count
 from pytest_lasertest.robot import Robot
 from pytest_lasertest.sensor import LaserProfile
 from pytest_lasertest.sim.client import PhysicsClient, PhysicsWorld
@@ -131,11 +132,9 @@ class _Runner:
         )
 
     def _scans_at(self, step: int) -> int:
-        """How many scans the scanner has taken by the start of this step: one at t = 0, then
-        one each scan period."""
-        rate = self.scenario.profile.update_rate
-        # The small slack keeps a scan due at exactly this step's time from rounding down.
-        return int(step * self.scenario.time_step * rate + 1e-9) + 1
+        """How many scans the scanner has taken by the start of this step."""
+        scenario = self.scenario
+        return scan_count(scenario.profile.update_rate, step * scenario.time_step)
 
     def _observe(self, time: float, pose: FloatArray, measured: Twist) -> tuple[float, float]:
         profile = self.scenario.profile
