@@ -20,6 +20,7 @@ from pytest_lasertest.sensor import LaserProfile
 from pytest_lasertest.spec import Pair, PairsFile, SpecError, load_pairs_file
 from pytest_lasertest.spec.bundled import bundled_robots
 from pytest_lasertest.spec.catalogue import load_catalogue
+from pytest_lasertest.spec.controller import default_controller
 from pytest_lasertest.spec.robot import load_robot_file
 
 # Distribution name -> module name, for the packages the plugin runs on.
@@ -117,11 +118,14 @@ CATALOGUE_HEADER = (
 
 
 def _driven_path(spec: PairsFile, pair: Pair) -> NominalPath:
-    """The path the gate's items plan on: the route timed by the baseline's obstacle-free run.
-    That run reads nothing, so its scan noise, and the seed, make no difference to it."""
+    """The path the gate's items plan on: the route timed by the baseline's obstacle-free run,
+    with the pairs file's controller or the default (conftest hooks need pytest, and are not
+    asked). That run reads nothing, so its scan noise, and the seed, make no difference to it."""
     from pytest_lasertest.drives import drive, solver_path
 
-    return solver_path(spec, drive(spec, pair.baseline.profile, (), seed=0))
+    controller = spec.controller or default_controller(spec.path)
+    control = drive(spec, pair.baseline.profile, (), 0, controller.factory)
+    return solver_path(spec, control)
 
 
 def print_plan(path: Path, *, as_json: bool) -> int:

@@ -1,14 +1,16 @@
 """Collection nodes: a pairs file, and the items it yields for each pair.
 
 Each pair yields `PAIR[coverage]`, its control item `PAIR[no-obstacle]` (`drive_item.py`) and
-its placement items (`placement_item.py`).
+its placement items (`placement_item.py`). The pairs file chooses the controller its items drive
+with: its own `controller:`, else a conftest's `pytest_lasertest_make_controller`, else the
+default.
 """
 
 from __future__ import annotations
 
 import dataclasses
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import pytest
 from _pytest._code.code import TerminalRepr, TracebackStyle
@@ -16,11 +18,15 @@ from _pytest._code.code import TerminalRepr, TracebackStyle
 from pytest_lasertest.artifacts.files import artifact_path, write_json
 from pytest_lasertest.coverage import CoverageChange, CoverageComparison, compare_coverage
 from pytest_lasertest.drive_item import CONTROL, ControlItem
+from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.placement_item import placement_items
 from pytest_lasertest.sensor import LaserProfile
-from pytest_lasertest.spec import Pair, PairsFile, SpecError, load_pairs_file
+from pytest_lasertest.spec import Location, Pair, PairsFile, SpecError, load_pairs_file
+from pytest_lasertest.spec.controller import ControllerChoice, default_controller
 from pytest_lasertest.spec.errors import display_path
+
+HOOK = "pytest_lasertest_make_controller"
 
 
 class PairFile(pytest.File):
@@ -31,6 +37,7 @@ class PairFile(pytest.File):
     def collect(self) -> list[pytest.Item]:
         try:
             spec = load_pairs_file(self.path)
+            controller = self._controller(spec)
         except SpecError as error:
             raise self.CollectError(str(error)) from None
         items: list[pytest.Item] = []
@@ -39,10 +46,39 @@ class PairFile(pytest.File):
                 CoverageItem.from_parent(self, name=f"{pair.name}[coverage]", spec=spec, pair=pair)
             )
             items.append(
-                ControlItem.from_parent(self, name=f"{pair.name}[{CONTROL}]", spec=spec, pair=pair)
+                ControlItem.from_parent(
+                    self,
+                    name=f"{pair.name}[{CONTROL}]",
+                    spec=spec,
+                    pair=pair,
+                    controller=controller,
+                )
             )
-            items += placement_items(self, spec, pair)
+            items += placement_items(self, spec, pair, controller)
         return items
+
+    def _controller(self, spec: PairsFile) -> ControllerChoice:
+        """The pairs file's `controller:`, else the first factory a conftest (or plugin) returns
+        from the hook, else the default. Collection chooses, so every pytest-xdist worker,
+        collecting the same file under the same conftests, chooses the same."""
+        if spec.controller is not None:
+            return spec.controller
+        # The file's own hook proxy: only conftests at or above the pairs file take part.
+        factory: object = self.ihook.pytest_lasertest_make_controller(config=self.config, spec=spec)
+        if factory is None:
+            return default_controller(self.path)
+        if not callable(factory):
+            raise SpecError(
+                Location(self.path, 1),
+                "controller",
+                f"the {HOOK} hook (in a conftest.py or plugin) returned {factory!r:.60}, not a "
+                "controller factory",
+                "return a callable that takes (robot, route) and returns a controller, or None "
+                "for the default",
+            )
+        return ControllerChoice(
+            _qualified_name(factory), f"from the {HOOK} hook", cast(ControllerFactory, factory)
+        )
 
 
 class CoverageLost(Exception):
@@ -139,6 +175,13 @@ class CoverageItem(pytest.Item):
 
     def reportinfo(self) -> tuple[Path, int, str]:
         return self.path, self.pair.location.line - 1, f"{self.pair.name}[coverage]"
+
+
+def _qualified_name(factory: object) -> str:
+    """`module:qualname` of a hook's factory, for reports."""
+    module = getattr(factory, "__module__", None)
+    name = getattr(factory, "__qualname__", None)
+    return f"{module}:{name}" if module and name else repr(factory)
 
 
 def _change_line(change: CoverageChange) -> str:

@@ -20,6 +20,7 @@ from pytest_lasertest.drives import PairDrive, drive_lines, drive_pair
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.spec import Pair, PairsFile
+from pytest_lasertest.spec.controller import ControllerChoice
 
 CONTROLS_KEY = pytest.StashKey[dict[tuple[Path, str], PairDrive]]()
 PHYSICS_KEY = pytest.StashKey[PhysicsClient]()
@@ -47,22 +48,30 @@ def physics_client(config: pytest.Config) -> PhysicsClient:
     return config.stash[PHYSICS_KEY]
 
 
-def control_drive(config: pytest.Config, spec: PairsFile, pair: Pair) -> PairDrive:
-    """The pair's obstacle-free runs, driven once per process."""
+def control_drive(
+    config: pytest.Config, spec: PairsFile, pair: Pair, controller: ControllerChoice
+) -> PairDrive:
+    """The pair's obstacle-free runs, driven once per process. Every item of a pairs file
+    drives with the same controller, so the pairs file and the pair key them."""
     controls = config.stash.setdefault(CONTROLS_KEY, {})
     key = (spec.path, pair.name)
     if key not in controls:
         seed = config.stash[OPTIONS_KEY].seed
-        controls[key] = drive_pair(spec, pair, (), seed, physics_client(config))
+        client = physics_client(config)
+        controls[key] = drive_pair(spec, pair, (), seed, controller.factory, client)
     return controls[key]
 
 
-def drive_report(item: pytest.Item, pair: Pair, failed: DriveFailed) -> str:
-    """The failure report of a drive: what happened to each robot, and how to replay it."""
+def drive_report(
+    item: pytest.Item, pair: Pair, controller: ControllerChoice, failed: DriveFailed
+) -> str:
+    """The failure report of a drive: the controller, what happened to each robot, and how to
+    replay it."""
     options = item.config.stash[OPTIONS_KEY]
     lines = [
         failed.headline,
         f"  pair       {pair.name} ({pair.location})",
+        f"  controller {controller.name} ({controller.source})",
         *failed.details,
         *drive_lines(failed.drives, pair),
         f"  policy     {options.policy}",
@@ -74,10 +83,13 @@ def drive_report(item: pytest.Item, pair: Pair, failed: DriveFailed) -> str:
 class ControlItem(pytest.Item):
     """Both robots through the empty world: the candidate must still reach the goal there."""
 
-    def __init__(self, *, spec: PairsFile, pair: Pair, **kwargs: Any) -> None:
+    def __init__(
+        self, *, spec: PairsFile, pair: Pair, controller: ControllerChoice, **kwargs: Any
+    ) -> None:
         super().__init__(**kwargs)
         self.spec = spec
         self.pair = pair
+        self.controller = controller
         self.add_marker("lasertest")
         self.add_marker("control")
 
@@ -86,8 +98,12 @@ class ControlItem(pytest.Item):
         return self.config.stash[OPTIONS_KEY]
 
     def runtest(self) -> None:
-        drives = control_drive(self.config, self.spec, self.pair)
-        self.user_properties += [("lasertest.seed", self.options.seed), *drives.properties()]
+        drives = control_drive(self.config, self.spec, self.pair, self.controller)
+        self.user_properties += [
+            ("lasertest.seed", self.options.seed),
+            ("lasertest.controller", self.controller.name),
+            *drives.properties(),
+        ]
         if drives.fails(self.options.policy):
             raise DriveFailed(
                 "the candidate fails without any obstacle: the change breaks the robot "
@@ -100,7 +116,7 @@ class ControlItem(pytest.Item):
         self, excinfo: pytest.ExceptionInfo[BaseException], style: TracebackStyle | None = None
     ) -> str | TerminalRepr:
         if isinstance(excinfo.value, DriveFailed):
-            return drive_report(self, self.pair, excinfo.value)
+            return drive_report(self, self.pair, self.controller, excinfo.value)
         return super().repr_failure(excinfo, style)
 
     def reportinfo(self) -> tuple[Path, int, str]:

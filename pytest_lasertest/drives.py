@@ -1,8 +1,9 @@
 """Both robots of a pair driven through one world, and what the policy makes of it.
 
 The baseline and the candidate are the same robot with different scanners: each drives the
-pairs file's route with the reference controller, in a world holding the given obstacles (none
-for the pair's control run), with scan noise from the run's seed.
+pairs file's route with a fresh controller from the same factory (the one the pairs file, a
+conftest hook or the default chose), in a world holding the given obstacles (none for the pair's
+control run), with scan noise from the run's seed.
 """
 
 from __future__ import annotations
@@ -10,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from pytest_lasertest.geometry import Obstacle
-from pytest_lasertest.nav.reactive import ReactiveController
+from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.options import Policy
 from pytest_lasertest.path import NominalPath, nominal_path, timed_to
 from pytest_lasertest.sensor import LaserProfile
@@ -50,13 +51,14 @@ def drive_pair(
     pair: Pair,
     obstacles: tuple[Obstacle, ...],
     seed: int,
+    make_controller: ControllerFactory,
     client: PhysicsClient | None = None,
 ) -> PairDrive:
     """Drive both robots of the pair through a world holding `obstacles`, built in `client`
-    (see `run_scenario`)."""
+    (see `run_scenario`), each with a controller from `make_controller`."""
     return PairDrive(
-        baseline=drive(spec, pair.baseline.profile, obstacles, seed, client),
-        candidate=drive(spec, pair.candidate.profile, obstacles, seed, client),
+        baseline=drive(spec, pair.baseline.profile, obstacles, seed, make_controller, client),
+        candidate=drive(spec, pair.candidate.profile, obstacles, seed, make_controller, client),
     )
 
 
@@ -65,14 +67,16 @@ def drive(
     profile: LaserProfile,
     obstacles: tuple[Obstacle, ...],
     seed: int,
+    make_controller: ControllerFactory,
     client: PhysicsClient | None = None,
 ) -> Run:
-    """One robot of the pairs file, carrying `profile`, through a world holding `obstacles`."""
+    """One robot of the pairs file, carrying `profile`, through a world holding `obstacles`,
+    driven by a controller from `make_controller`."""
     world = spec.world
     scenario = Scenario(
         spec.robot, profile, obstacles, world.start, world.route, world.time_limit, seed
     )
-    return run_scenario(scenario, ReactiveController, client)
+    return run_scenario(scenario, make_controller, client)
 
 
 def solver_path(spec: PairsFile, control: Run) -> NominalPath:

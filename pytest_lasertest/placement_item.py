@@ -23,7 +23,7 @@ from pytest_lasertest.drive_item import (
     drive_report,
     physics_client,
 )
-from pytest_lasertest.drives import drive_pair, solver_path
+from pytest_lasertest.drives import PairDrive, drive_pair, solver_path
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.placement import (
     DIRECTIONS,
@@ -37,6 +37,7 @@ from pytest_lasertest.placement import (
 )
 from pytest_lasertest.plan_report import DETECTED_BY, describe_obstacle, witness_json
 from pytest_lasertest.spec import Pair, PairsFile
+from pytest_lasertest.spec.controller import ControllerChoice
 from pytest_lasertest.spec.errors import display_path
 
 # The session's plans, by (pairs file path, pair name): the items of a pair plan it once.
@@ -57,11 +58,19 @@ class PlacementItem(pytest.Item):
     """One witness of one direction of a pair: the obstacle only one of the scanners reads."""
 
     def __init__(
-        self, *, spec: PairsFile, pair: Pair, direction: Direction, index: int, **kwargs: Any
+        self,
+        *,
+        spec: PairsFile,
+        pair: Pair,
+        controller: ControllerChoice,
+        direction: Direction,
+        index: int,
+        **kwargs: Any,
     ) -> None:
         super().__init__(**kwargs)
         self.spec = spec
         self.pair = pair
+        self.controller = controller
         self.direction: Direction = direction
         self.index = index
         self.add_marker("lasertest")
@@ -83,7 +92,7 @@ class PlacementItem(pytest.Item):
         if not verification.holds():
             artifact = self._write_artifact(witness, verification)
             raise VerificationFailed(witness, verification, artifact)
-        if control_drive(self.config, self.spec, self.pair).fails(self.options.policy):
+        if self._control().fails(self.options.policy):
             raise pytest.skip.Exception(
                 f"the candidate already fails without any obstacle: see {self.pair.name}"
                 f"[{CONTROL}]",
@@ -95,8 +104,12 @@ class PlacementItem(pytest.Item):
         """Both robots through the world holding the witness; the policy judges the runs."""
         obstacles = (witness.placement.obstacle,)
         client = physics_client(self.config)
-        drives = drive_pair(self.spec, self.pair, obstacles, self.options.seed, client)
-        self.user_properties += drives.properties()
+        factory = self.controller.factory
+        drives = drive_pair(self.spec, self.pair, obstacles, self.options.seed, factory, client)
+        self.user_properties += [
+            ("lasertest.controller", self.controller.name),
+            *drives.properties(),
+        ]
         if drives.fails(self.options.policy):
             raise DriveFailed(
                 f"the candidate fails where witness {witness.id} stands: the obstacle the "
@@ -111,9 +124,12 @@ class PlacementItem(pytest.Item):
         if key not in plans:
             from pytest_lasertest.solver.plan import plan_pair
 
-            control = control_drive(self.config, self.spec, self.pair)
+            control = self._control()
             plans[key] = plan_pair(self.spec, self.pair, solver_path(self.spec, control.baseline))
         return plans[key]
+
+    def _control(self) -> PairDrive:
+        return control_drive(self.config, self.spec, self.pair, self.controller)
 
     def _record(self, witness: Witness, verification: Verification) -> None:
         self.user_properties += [
@@ -145,7 +161,7 @@ class PlacementItem(pytest.Item):
         if isinstance(excinfo.value, VerificationFailed):
             return self._rejection_report(excinfo.value)
         if isinstance(excinfo.value, DriveFailed):
-            return drive_report(self, self.pair, excinfo.value)
+            return drive_report(self, self.pair, self.controller, excinfo.value)
         return super().repr_failure(excinfo, style)
 
     def _rejection_report(self, rejected: VerificationFailed) -> str:
@@ -176,7 +192,9 @@ class PlacementItem(pytest.Item):
         return self.path, self.pair.location.line - 1, self.name
 
 
-def placement_items(parent: pytest.File, spec: PairsFile, pair: Pair) -> list[pytest.Item]:
+def placement_items(
+    parent: pytest.File, spec: PairsFile, pair: Pair, controller: ControllerChoice
+) -> list[pytest.Item]:
     """The pair's items, `PAIR[DIRECTION-INDEX]`: they depend on the YAML alone, never on Z3."""
     return [
         PlacementItem.from_parent(
@@ -184,6 +202,7 @@ def placement_items(parent: pytest.File, spec: PairsFile, pair: Pair) -> list[py
             name=f"{pair.name}[{direction}-{index}]",
             spec=spec,
             pair=pair,
+            controller=controller,
             direction=direction,
             index=index,
         )

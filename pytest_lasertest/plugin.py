@@ -1,7 +1,8 @@
-"""The pytest entry point: options and configuration.
+"""The pytest entry point: options, configuration, and the hooks the plugin adds (hooks.py).
 
-It imports only the option parsers and the session object: the collection code, numpy and YAML
-load when pytest first meets a pairs file, so test runs without one pay nothing for the plugin.
+It imports only the option parsers, the session object and the hook specifications: the
+collection code, numpy and YAML load when pytest first meets a pairs file, so test runs without
+one pay nothing for the plugin.
 """
 
 from __future__ import annotations
@@ -25,6 +26,12 @@ from pytest_lasertest.options import (
 from pytest_lasertest.session import LaserSession, XdistHooks
 
 SEED_KEY = "lasertest_seed"
+
+
+def pytest_addhooks(pluginmanager: pytest.PytestPluginManager) -> None:
+    from pytest_lasertest import hooks
+
+    pluginmanager.add_hookspecs(hooks)
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:

@@ -23,6 +23,9 @@ class Robot:
     nominal_speed: float  # m/s, cruising speed along the nominal path
     nominal_turn_rate: float  # rad/s, turning in place at waypoints
     reaction_time: float  # s, from a scan to the first braking command
+    # Its navigation stack's parameters as its configuration sets them: (section, name, value)
+    # with the names of pytest_lasertest.nav.settings; the rest keep ROS's defaults.
+    navigation: tuple[tuple[str, str, float | bool], ...] = ()
 
     @property
     def braking_distance(self) -> float:

@@ -1,5 +1,6 @@
-"""The bundled examples: the paper's downgrades fail on the attribute each one changed, and the
-16-beam robot of the paper's size pair drives into the thin pole the 32-beam robot passes."""
+"""The bundled examples: the paper's downgrades fail on the attribute each one changed, and with
+the Husky's move_base the paper's findings reappear: the 5 m robot's phantom arc, and the thin
+pole the 16-beam robot drives into and the 32-beam robot stops short of."""
 
 from __future__ import annotations
 
@@ -17,8 +18,15 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
     result = pytester.runpytest("examples", "-rA", "--laser-seed=1")
     failed = {line.split()[1] for line in result.stdout.lines if line.startswith("FAILED ")}
     assert {item for item in failed if not item.endswith("[coverage]")} == {
-        # The 16-beam robot drives into the thin pole; the 32-beam robot passes it.
+        # The paper's distance finding: the 5 m scanner's no-return readings become a phantom
+        # arc 5 m ahead (range_max - 1e-4 < obstacle_range 5.5), and the robot never gets past.
+        "examples/paper.lasertest.yaml::distance[no-obstacle]",
+        # The paper's size finding: the 16-beam robot drives into the thin pole; the 32-beam
+        # robot stops short of it and stays stuck.
         "examples/paper.lasertest.yaml::size[candidate-misses-1]",
+        # A 5 cm box beside the route stops both robots: their plan, made once at the start,
+        # runs past it too close to follow, and the Husky's move_base never plans again.
+        "examples/paper.lasertest.yaml::size[baseline-misses-2]",
         # Boxes and a pole 0.328 m high on the last leg: below the TiM571's raised scan plane
         # (0.408 m), so the candidate drives into each; the LMS111 reads them and passes.
         *(
@@ -29,6 +37,9 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
     result.stdout.fnmatch_lines(
         [
             "PASSED examples/husky.lasertest.yaml::ust10_to_ust20[[]coverage[]]",
+            # The team's own controller takes both robots to the goal in the empty world.
+            "PASSED examples/own_controller/gap_follower.lasertest.yaml::size[[]no-obstacle[]]",
+            "PASSED examples/paper.lasertest.yaml::blind_spot[[]no-obstacle[]]",
             "PASSED examples/paper.lasertest.yaml::size[[]no-obstacle[]]",
             "PASSED examples/paper.lasertest.yaml::size[[]candidate-misses-0[]]",
             "PASSED examples/paper.lasertest.yaml::size[[]baseline-misses-0[]]",
@@ -36,10 +47,18 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
     )
     result.stdout.fnmatch_lines(
         [
+            "*_ distance[[]no-obstacle[]] _*",
+            "  baseline   clearpath_lms1xx_gazebo: passed: *; goal reached at t = * s",
+            "  candidate  clearpath_lms1xx_gazebo: FAILED: *; stuck at t = * s: *",
+        ]
+    )
+    result.stdout.fnmatch_lines(
+        [
             "*_ size[[]candidate-misses-1[]] _*",
             "the candidate fails where witness candidate-misses-1 stands: *",
+            "  controller move_base (the default)",
             "  obstacle   cylinder of radius 0.025 m at *",
-            "  baseline   clearpath_lms1xx_gazebo: passed: *",
+            "  baseline   clearpath_lms1xx_gazebo: FAILED: no collision, *; stuck at t = * s: *",
             "  candidate  clearpath_lms1xx_gazebo: FAILED: collided at t = * s; *",
         ]
     )

@@ -37,7 +37,7 @@ def test_a_pytest_run_without_pairs_files_loads_no_solver_or_simulator(
     pytester.runpytest_subprocess("-p", "no:hypothesispytest").assert_outcomes(passed=1)
 
 
-def test_the_wheel_ships_the_robots_the_catalogue_and_the_entry_point(tmp_path: Path) -> None:
+def test_the_wheel_ships_the_robots_the_catalogue_and_the_entry_points(tmp_path: Path) -> None:
     subprocess.run(
         [
             sys.executable,
@@ -63,3 +63,7 @@ def test_the_wheel_ships_the_robots_the_catalogue_and_the_entry_point(tmp_path: 
     text = zipfile.ZipFile(wheel).read(entry_points).decode()
     assert "[pytest11]\nlasertest = pytest_lasertest.plugin" in text
     assert "lasertest = pytest_lasertest.cli:main" in text
+    assert (
+        "[lasertest.controllers]\nmove_base = pytest_lasertest.nav.move_base:MoveBase\n"
+        "reactive = pytest_lasertest.nav.reactive:ReactiveController"
+    ) in text

@@ -12,9 +12,11 @@ Each update does what the ObstacleLayer does with one laser scan:
    `obstacle_range` marks its cell;
 5. the cells under the robot's footprint are freed.
 
-`costs()` then inflates, as the InflationLayer does: a cell d m from the nearest lethal cell
-costs 253 (inscribed) within the footprint's inscribed radius, 252 exp(-cost_scaling_factor
-(d - inscribed)) out to `inflation_radius`, and keeps its own cost beyond.
+With `track_unknown_space`, cells never seen are unknown (255), not free, until a ray clears
+them. `costs()` then inflates, as the InflationLayer does: a cell d m from the nearest lethal
+cell costs 253 (inscribed) within the footprint's inscribed radius, 252 exp(-cost_scaling_factor
+(d - inscribed)) out to `inflation_radius`, and keeps its own cost beyond; an unknown cell stays
+unknown unless it lies within the inscribed radius.
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ from pytest_lasertest.geometry import FloatArray, IntArray
 from pytest_lasertest.nav.protocol import LaserScan
 from pytest_lasertest.path import place
 
-FREE, INSCRIBED, LETHAL = 0, 253, 254
+FREE, INSCRIBED, LETHAL, UNKNOWN = 0, 253, 254, 255
 # costmap_2d's laserScanValidInfCallback: a tenth of a millimetre short of range_max.
 INF_EPSILON = 1e-4  # m
 Grid = npt.NDArray[np.uint8]  # (N, N) costs, indexed [y, x]
@@ -37,7 +39,7 @@ Grid = npt.NDArray[np.uint8]  # (N, N) costs, indexed [y, x]
 
 @dataclass(frozen=True)
 class CostmapSettings:
-    """The local costmap's parameters, with costmap_2d's names; the defaults are its own."""
+    """A costmap's parameters, with costmap_2d's names; the defaults are its own."""
 
     size: float = 6.0  # m, the rolling window's width and height
     resolution: float = 0.05  # m per cell
@@ -47,6 +49,8 @@ class CostmapSettings:
     inflation_radius: float = 0.55  # m
     cost_scaling_factor: float = 10.0  # 1/m
     footprint_clearing: bool = True
+    track_unknown_space: bool = False
+    update_frequency: float = 5.0  # Hz: each update takes the latest scan
 
     @property
     def cells(self) -> int:
@@ -55,14 +59,19 @@ class CostmapSettings:
 
 
 class Costmap:
-    """The local costmap of one robot, updated scan by scan."""
+    """The rolling costmap of one robot, updated scan by scan."""
 
     def __init__(self, settings: CostmapSettings, footprint: FloatArray) -> None:
         self.settings = settings
         self.footprint = footprint  # (V, 2) m, counter-clockwise in the base frame
-        self.grid: Grid = np.zeros((settings.cells, settings.cells), dtype=np.uint8)
+        self.unseen = UNKNOWN if settings.track_unknown_space else FREE
+        self.grid: Grid = np.full((settings.cells, settings.cells), self.unseen, dtype=np.uint8)
         self.origin = (0.0, 0.0)  # m, the world position of cell (0, 0)'s lower left corner
-        self._inscribed = _inscribed_radius(footprint)
+        # costmap_2d inflates out to a whole number of cells.
+        reach = math.ceil(settings.inflation_radius / settings.resolution) * settings.resolution
+        self.inflation = InflationCost(
+            _inscribed_radius(footprint), reach, settings.cost_scaling_factor
+        )
 
     def update(self, scan: LaserScan, robot: tuple[float, float, float]) -> None:
         """One scan's update, the robot at pose [x, y, yaw] (m, m, rad) in the odom frame."""
@@ -81,20 +90,40 @@ class Costmap:
         cells = self.settings.cells
         return x, y, (x >= 0) & (x < cells) & (y >= 0) & (y < cells)
 
-    def costs(self) -> Grid:
-        """The window's costs with the lethal cells inflated, shape (N, N), indexed [y, x]."""
-        settings = self.settings
-        reach = math.ceil(settings.inflation_radius / settings.resolution)  # cells
-        distance = lethal_distances(self.grid == LETHAL, reach) * settings.resolution
-        within = distance <= reach * settings.resolution
-        falloff = np.exp(-settings.cost_scaling_factor * (distance - self._inscribed))
-        inflated = np.where(
-            distance <= self._inscribed, INSCRIBED, ((INSCRIBED - 1) * falloff).astype(np.int64)
-        )
-        inflated = np.where(within, inflated, FREE)
-        inflated[distance == 0.0] = LETHAL
-        costs: Grid = np.maximum(self.grid, inflated).astype(np.uint8)
+    def costs(self, columns: slice = slice(None), rows: slice = slice(None)) -> Grid:
+        """The costs of the window's block of `columns` and `rows` (all by default) with the
+        lethal cells inflated, indexed [y, x]."""
+        cells = self.settings.cells
+        (x0, x1, _), (y0, y1, _) = columns.indices(cells), rows.indices(cells)
+        reach = math.ceil(self.settings.inflation_radius / self.settings.resolution)  # cells
+        # Lethal cells up to `reach` outside the block inflate into it.
+        low_x, low_y = max(x0 - reach, 0), max(y0 - reach, 0)
+        padded = self.grid[low_y : min(y1 + reach, cells), low_x : min(x1 + reach, cells)]
+        inflated = self._inflation(padded == LETHAL, reach)
+        inflated = inflated[y0 - low_y : y1 - low_y, x0 - low_x : x1 - low_x]
+        own = self.grid[y0:y1, x0:x1]
+        kept_unknown = (own == UNKNOWN) & (inflated < INSCRIBED)
+        costs: Grid = np.where(kept_unknown, UNKNOWN, np.maximum(own, inflated)).astype(np.uint8)
         return costs
+
+    def clear_outside(self, x: float, y: float, size: float) -> None:
+        """Forget every cell outside the square `size` m wide around (x, y) m, as
+        clear_costmap_recovery resets the obstacle layer: what it forgets is unseen again."""
+        cells = self.settings.cells
+        low_x, low_y, _ = self.cell_of(np.array([[x - size / 2.0, y - size / 2.0]]))
+        high_x, high_y, _ = self.cell_of(np.array([[x + size / 2.0, y + size / 2.0]]))
+        kept = self.grid.copy()
+        self.grid[:] = self.unseen
+        # The cells strictly between the corners' cells are kept, as the recovery keeps them.
+        columns = slice(max(int(low_x[0]) + 1, 0), max(min(int(high_x[0]), cells), 0))
+        rows = slice(max(int(low_y[0]) + 1, 0), max(min(int(high_y[0]), cells), 0))
+        self.grid[rows, columns] = kept[rows, columns]
+
+    def _inflation(self, lethal: npt.NDArray[np.bool_], reach: int) -> Grid:
+        """The InflationLayer's cost of each cell, shape of `lethal`."""
+        distance = lethal_distances(lethal, reach) * self.settings.resolution
+        grid: Grid = self.inflation(distance).astype(np.uint8)
+        return grid
 
     def _observation(
         self, scan: LaserScan, robot: tuple[float, float, float]
@@ -120,7 +149,7 @@ class Costmap:
         shift_y = int((y - half - self.origin[1]) / resolution)
         if shift_x == 0 and shift_y == 0:
             return
-        kept = np.zeros_like(self.grid)
+        kept = np.full_like(self.grid, self.unseen)
         source, target = _overlap(shift_x, cells), _overlap(-shift_x, cells)
         rows_source, rows_target = _overlap(shift_y, cells), _overlap(-shift_y, cells)
         kept[rows_target, target] = self.grid[rows_source, source]
@@ -132,11 +161,14 @@ class Costmap:
         start_x, start_y, inside = self.cell_of(np.array([laser]))
         if not inside[0] or not len(points):
             return
-        ends = self._clipped(laser, points)
-        end_x, end_y, valid = self.cell_of(ends)
+        end_x, end_y, valid = self.cell_of(self._clipped(laser, points))
+        cells = self.settings.cells
+        # Rays that end in one cell visit the same cells: far out, beams outnumber cells.
+        ends = np.unique(end_x[valid] + end_y[valid] * cells)
         longest = math.ceil(self.settings.raytrace_range / self.settings.resolution)
-        x, y = ray_cells(int(start_x[0]), int(start_y[0]), end_x[valid], end_y[valid], longest)
-        self.grid[y, x] = FREE
+        start = (int(start_x[0]), int(start_y[0]))
+        index = ray_indices(*start, ends % cells, ends // cells, cells, longest)
+        self.grid.reshape(-1)[index] = FREE
 
     def _clipped(self, laser: tuple[float, float], points: FloatArray) -> FloatArray:
         """The points moved back along their rays onto the window where they lie beyond it, as
@@ -170,25 +202,47 @@ class Costmap:
     def _free_footprint(self, robot: tuple[float, float, float]) -> None:
         """Free the cells the footprint at pose [x, y, yaw] covers: each column between its
         outline's lowest and highest cell, as costmap_2d's convexFillCells does."""
-        corners = place(self.footprint, np.array(robot))
-        cell_x, cell_y, _ = self.cell_of(corners)
-        outline_x, outline_y = [], []
-        for index in range(len(corners)):
-            following = (index + 1) % len(corners)
-            xs, ys = ray_cells(
-                int(cell_x[index]),
-                int(cell_y[index]),
-                cell_x[following : following + 1],
-                cell_y[following : following + 1],
-            )
-            outline_x.append(xs)
-            outline_y.append(ys)
-        columns, rows = np.concatenate(outline_x), np.concatenate(outline_y)
+        corners_x, corners_y, _ = self.cell_of(place(self.footprint, np.array(robot)))
+        following = np.roll(np.arange(len(corners_x)), -1)
+        outline = [
+            ray_cells(int(x), int(y), corners_x[after : after + 1], corners_y[after : after + 1])
+            for x, y, after in zip(corners_x, corners_y, following, strict=True)
+        ]
+        columns = np.concatenate([x for x, _ in outline])
+        rows = np.concatenate([y for _, y in outline])
         cells = self.settings.cells
-        for column in np.unique(columns[(columns >= 0) & (columns < cells)]):
-            in_column = rows[columns == column]
-            low, high = max(int(in_column.min()), 0), min(int(in_column.max()), cells - 1)
-            self.grid[low : high + 1, column] = FREE
+        inside = (columns >= 0) & (columns < cells)
+        if not inside.any():
+            return
+        columns, rows = columns[inside], rows[inside]
+        first = int(columns.min())
+        width = int(columns.max()) - first + 1
+        low, high = np.full(width, cells), np.full(width, -1)
+        np.minimum.at(low, columns - first, rows)
+        np.maximum.at(high, columns - first, rows)
+        bottom, top = max(int(low.min()), 0), min(int(high.max()), cells - 1)
+        row = np.arange(bottom, top + 1)[:, np.newaxis]
+        block = self.grid[bottom : top + 1, first : first + width]
+        block[(row >= low) & (row <= high)] = FREE
+
+
+@dataclass(frozen=True)
+class InflationCost:
+    """The InflationLayer's cost of a cell d m from the nearest lethal cell: 254 on it, 253
+    within the inscribed radius, 252 exp(-cost_scaling_factor (d - inscribed)) out to the
+    inflation radius, 0 beyond."""
+
+    inscribed: float  # m, the footprint's inscribed radius
+    inflation_radius: float  # m
+    cost_scaling_factor: float  # 1/m
+
+    def __call__(self, distance: FloatArray) -> FloatArray:
+        """The cost at each distance (m), same shape."""
+        falloff = (INSCRIBED - 1) * np.exp(-self.cost_scaling_factor * (distance - self.inscribed))
+        cost = np.where(distance <= self.inflation_radius, np.floor(falloff), FREE)
+        cost = np.where(distance <= self.inscribed, INSCRIBED, cost)
+        costs: FloatArray = np.where(distance <= 0.0, LETHAL, cost)
+        return costs
 
 
 def ray_cells(
@@ -197,25 +251,47 @@ def ray_cells(
     """The cells costmap_2d's raytraceLine visits from one start cell to each end cell (K,):
     steps along the longer axis, the other stepping when its error wraps, then the last cell;
     at most `longest` cells of length (scaled along the longer axis), shape (M,) each."""
+    # Traced from (0, 0), cell (x, y) is the index x + y * stride, with room for any x.
+    reach = int(np.abs(end_x - start_x).max(initial=0)) + 1
+    stride = 2 * reach + 1
+    index = ray_indices(0, 0, end_x - start_x, end_y - start_y, stride, longest)
+    y, x = np.divmod(index + reach, stride)
+    return (x - reach + start_x).astype(np.int64), (y + start_y).astype(np.int64)
+
+
+def ray_indices(
+    start_x: int,
+    start_y: int,
+    end_x: IntArray,
+    end_y: IntArray,
+    stride: int,
+    longest: int | None = None,
+) -> IntArray:
+    """`ray_cells` as flat indices x + y * stride into a grid `stride` cells wide, shape (M,).
+
+    Every ray is stepped at once: each visited cell is the start, `step` cells along the
+    ray's longer axis and `wraps` along the other, and `wraps` is Bresenham's error count.
+    """
     dx, dy = end_x - start_x, end_y - start_y
     along_x = np.abs(dx) >= np.abs(dy)
-    major = np.where(along_x, np.abs(dx), np.abs(dy))
-    minor = np.where(along_x, np.abs(dy), np.abs(dx))
+    major, minor = np.maximum(np.abs(dx), np.abs(dy)), np.minimum(np.abs(dx), np.abs(dy))
     steps = major
     if longest is not None:
         length = np.hypot(dx, dy)
         scale = np.minimum(1.0, longest / np.where(length == 0.0, 1.0, length))
         steps = np.minimum((scale * major).astype(np.int64), major)
-    # Each ray visits cells 0..steps: one row per visited cell.
-    ray = np.repeat(np.arange(len(steps)), steps + 1)
-    first = np.cumsum(steps + 1) - (steps + 1)
-    step = np.arange(len(ray)) - first[ray]
-    wraps = (major[ray] // 2 + step * minor[ray]) // np.maximum(major[ray], 1)
-    sign_x = np.where(dx[ray] > 0, 1, -1)
-    sign_y = np.where(dy[ray] > 0, 1, -1)
-    x = np.where(along_x[ray], start_x + sign_x * step, start_x + sign_x * wraps)
-    y = np.where(along_x[ray], start_y + sign_y * wraps, start_y + sign_y * step)
-    return x.astype(np.int64), y.astype(np.int64)
+    unit_x, unit_y = np.where(dx > 0, 1, -1), np.where(dy > 0, stride, -stride)
+    counts = steps + 1
+    # int32 halves the time of the per-cell arithmetic; a window holds far fewer cells.
+    step = np.arange(counts.sum(), dtype=np.int32)
+    step -= np.repeat((np.cumsum(counts) - counts).astype(np.int32), counts)
+    wraps = np.repeat((major // 2).astype(np.int32), counts)
+    wraps += step * np.repeat(minor.astype(np.int32), counts)
+    wraps //= np.repeat(np.maximum(major, 1).astype(np.int32), counts)
+    index = step * np.repeat(np.where(along_x, unit_x, unit_y).astype(np.int32), counts)
+    index += wraps * np.repeat(np.where(along_x, unit_y, unit_x).astype(np.int32), counts)
+    cells: IntArray = index + (start_x + start_y * stride)
+    return cells
 
 
 def _overlap(shift: int, cells: int) -> slice:

@@ -1,7 +1,9 @@
-"""Pairs files: a robot, a world, settings, constraints, and named baseline/candidate pairs."""
+"""Pairs files: a robot, a world, settings, constraints, the controller, and named
+baseline/candidate pairs."""
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -10,13 +12,15 @@ from pytest_lasertest.geometry import Pose3D
 from pytest_lasertest.robot import Robot
 from pytest_lasertest.spec.catalogue import Catalogue, load_catalogue
 from pytest_lasertest.spec.constraints import Constraint, read_constraints
+from pytest_lasertest.spec.controller import ControllerChoice, read_controller
 from pytest_lasertest.spec.errors import Location, SpecError
+from pytest_lasertest.spec.navigation import read_navigation
 from pytest_lasertest.spec.node import SpecNode, read_root
 from pytest_lasertest.spec.profile import PROFILE_KEYS, Scanner, build_profile, read_fields
 from pytest_lasertest.spec.robot import read_robot
 from pytest_lasertest.spec.world import World, read_world
 
-SECTIONS = ("robot", "world", "settings", "constraints", "pairs")
+SECTIONS = ("robot", "world", "settings", "constraints", "controller", "navigation", "pairs")
 REQUIRED_SECTIONS = ("robot", "world", "pairs")
 SETTINGS_KEYS = ("min_obstacle_size", "max_obstacle_size", "witnesses")
 # Pair names become part of test ids (`file::NAME[...]`), which `::`, `[` and spaces would break.
@@ -53,6 +57,8 @@ class PairsFile:
     pairs: tuple[Pair, ...]
     settings: Settings = field(default_factory=Settings)
     constraints: tuple[Constraint, ...] = ()
+    # The file's `controller:`; None leaves the choice to conftest hooks, then the default.
+    controller: ControllerChoice | None = None
 
 
 def load_pairs_file(path: Path) -> PairsFile:
@@ -69,6 +75,10 @@ def load_pairs_file(path: Path) -> PairsFile:
                 key, "a pairs file needs robot, world and pairs; see the example in the README"
             )
     robot = read_robot(sections["robot"])
+    if "navigation" in sections:
+        # The file's own parameters come after the robot's, and so win.
+        overrides = read_navigation(sections["navigation"])
+        robot = dataclasses.replace(robot, navigation=robot.navigation + overrides)
     return PairsFile(
         path=path,
         robot=robot,
@@ -76,6 +86,7 @@ def load_pairs_file(path: Path) -> PairsFile:
         pairs=_read_pairs(sections["pairs"], load_catalogue(), robot.laser_mount),
         settings=_read_settings(sections.get("settings")),
         constraints=read_constraints(sections["constraints"]) if "constraints" in sections else (),
+        controller=read_controller(sections["controller"]) if "controller" in sections else None,
     )
 
 

@@ -8,6 +8,7 @@ from pathlib import Path
 from pytest_lasertest.geometry import Pose3D
 from pytest_lasertest.robot import Robot, pad_footprint
 from pytest_lasertest.spec.bundled import ROBOT_FILE, bundled_robots
+from pytest_lasertest.spec.navigation import load_navigation_file
 from pytest_lasertest.spec.node import SpecNode, read_root
 
 REQUIRED_KEYS = (
@@ -19,7 +20,13 @@ REQUIRED_KEYS = (
     "max_angular_velocity",
     "max_angular_acceleration",
 )
-OPTIONAL_KEYS = ("footprint_padding", "nominal_speed", "nominal_turn_rate", "reaction_time")
+OPTIONAL_KEYS = (
+    "footprint_padding",
+    "nominal_speed",
+    "nominal_turn_rate",
+    "reaction_time",
+    "navigation",
+)
 ROBOT_KEYS = REQUIRED_KEYS + OPTIONAL_KEYS
 # move_base's default controller_frequency is 20 Hz: a scan reaches the wheels one period later.
 DEFAULT_REACTION_TIME = 0.05  # s
@@ -59,6 +66,7 @@ def load_robot_file(path: Path) -> Robot:
         reaction_time=_optional(
             fields, "reaction_time", "s", "its reaction time", DEFAULT_REACTION_TIME, zero=True
         ),
+        navigation=load_navigation_file(fields["navigation"]) if "navigation" in fields else (),
     )
 
 
