@@ -1,16 +1,16 @@
 """How fast a robot run simulates, against bare PyBullet stepping, measured side by side.
 
-Each robot run drives the Husky with the paper's 720-beam, 50 Hz scanner and the reference
-controller for 30 s of simulated time, in an empty world, past one obstacle beside its route (as
-a placement item drives) or past four. Right after each run, the same world (robot, ground,
-obstacles) is stepped bare through the wheel speeds the run drove: the same physics, with no
-scans, no controller and no oracles. That is the floor a run cannot beat. (Stepping wheels held
-at one speed instead costs PyBullet about 15 % more, which would flatter the ratio.) Then many
-short runs in one process check that memory and physics clients are released. Every world is
-built in one physics client, reset for it, as the plugin does. The last line reads
-`real-time factor: R; ratio to bare physics: Q` (medians).
+Each robot run drives the Husky with the paper's 720-beam, 50 Hz scanner and a controller (the
+Husky's move_base by default, or the reactive reference) for 30 s of simulated time, in an
+empty world, past one obstacle beside its route (as a placement item drives) or past four.
+Right after each run, the same world (robot, ground, obstacles) is stepped bare through the
+wheel speeds the run drove: the same physics, with no scans, no controller and no oracles. That
+is the floor a run cannot beat. (Stepping wheels held at one speed instead costs PyBullet about
+15 % more, which would flatter the ratio.) Then many short runs in one process check that memory
+and physics clients are released. Every world is built in one physics client, reset for it, as
+the plugin does. The last line reads `real-time factor: R; ratio to bare physics: Q` (medians).
 
-    python benchmarks/sim.py [--runs 9] [--memory-runs 1000]
+    python benchmarks/sim.py [--runs 9] [--memory-runs 1000] [--controller move_base|reactive]
 """
 
 from __future__ import annotations
@@ -21,6 +21,8 @@ import time
 from pathlib import Path
 
 from pytest_lasertest.geometry import Box, Cylinder, FloatArray, Obstacle, Point2D, Pose2D
+from pytest_lasertest.nav.move_base import MoveBase
+from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.sim.client import PhysicsClient, PhysicsWorld, connected_clients
 from pytest_lasertest.sim.scenario import Scenario, run_scenario
@@ -30,6 +32,10 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
 SCANNER = next(pair for pair in PAPER.pairs if pair.name == "distance").baseline.profile
 SIMULATED = 30.0  # s per run
+CONTROLLERS: dict[str, ControllerFactory] = {
+    "move_base": MoveBase,
+    "reactive": ReactiveController,
+}
 START = Pose2D(0.0, 0.0, 0.0)
 ROUTE = (Point2D(30.0, 0.0),)  # beyond what 30 s at 0.5 m/s reaches: the run lasts 30 s
 # Beside the route, inside the scanner's range for most of the run.
@@ -50,17 +56,19 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--runs", type=int, default=9, help="robot runs, taking turns by scene")
     parser.add_argument("--memory-runs", type=int, default=1000)
+    parser.add_argument("--controller", choices=list(CONTROLLERS), default="move_base")
     args = parser.parse_args()
+    controller = CONTROLLERS[args.controller]
     factors, ratios = [], []
     names = list(SCENES)
     # One client for every world, as the plugin keeps one per process.
     with PhysicsClient() as client:
         for index in range(args.runs):
             name = names[index % len(names)]
-            factor, ratio = one_run(name, SCENES[name], client)
+            factor, ratio = one_run(name, SCENES[name], controller, client)
             factors.append(factor)
             ratios.append(ratio)
-        memory(args.memory_runs, client)
+        memory(args.memory_runs, controller, client)
     print(f"{connected_clients()} physics clients left connected")
     print(
         f"real-time factor: {statistics.median(factors):.0f}; "
@@ -69,12 +77,15 @@ def main() -> None:
 
 
 def one_run(
-    name: str, obstacles: tuple[Obstacle, ...], client: PhysicsClient
+    name: str,
+    obstacles: tuple[Obstacle, ...],
+    controller: ControllerFactory,
+    client: PhysicsClient,
 ) -> tuple[float, float]:
     """A robot run in the world, then a bare stepping of it: (real-time factor, ratio)."""
     scenario = Scenario(PAPER.robot, SCANNER, obstacles, START, ROUTE, SIMULATED, seed=0)
     began = time.perf_counter()
-    run = run_scenario(scenario, ReactiveController, client)
+    run = run_scenario(scenario, controller, client)
     wall = time.perf_counter() - began
     bare = bare_physics(scenario, run.wheels, client)
     simulated = float(run.times[-1])
@@ -97,14 +108,14 @@ def bare_physics(scenario: Scenario, wheels: FloatArray, client: PhysicsClient) 
         return time.perf_counter() - began
 
 
-def memory(runs: int, client: PhysicsClient) -> None:
+def memory(runs: int, controller: ControllerFactory, client: PhysicsClient) -> None:
     """Resident memory growth over `runs` one-second robot runs, after ten to warm up."""
     scenario = Scenario(PAPER.robot, SCANNER, SCENES["beside the route"], START, ROUTE, 1.0, seed=0)
     for _ in range(10):
-        run_scenario(scenario, ReactiveController, client)
+        run_scenario(scenario, controller, client)
     before = resident_bytes()
     for _ in range(runs):
-        run_scenario(scenario, ReactiveController, client)
+        run_scenario(scenario, controller, client)
     grown = (resident_bytes() - before) / 2**20
     print(f"{runs} runs in one process: resident memory grew {grown:.1f} MB")
 

@@ -37,3 +37,14 @@ def test_the_simulator_benchmark_runs_and_ends_with_its_figures() -> None:
     lines = printed("benchmarks/sim.py", "--runs", "2", "--memory-runs", "5")
     assert SIM_LINE.fullmatch(lines[-1])
     assert "0 physics clients left connected" in lines[-2]
+
+
+NAV_LINE = re.compile(
+    r"planning cycle: [\d.]+ ms; ratio to the physics of one control period: [\d.]+"
+)
+
+
+def test_the_navigation_benchmark_runs_and_ends_with_its_figures() -> None:
+    lines = printed("benchmarks/nav.py", "--runs", "1")
+    assert NAV_LINE.fullmatch(lines[-1])
+    assert re.match(r"\d+ costmap updates: [\d.]+ ms; \d+ DWA commands: ", lines[0])

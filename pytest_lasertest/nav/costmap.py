@@ -102,9 +102,10 @@ class Costmap:
         inflated = self._inflation(padded == LETHAL, reach)
         inflated = inflated[y0 - low_y : y1 - low_y, x0 - low_x : x1 - low_x]
         own = self.grid[y0:y1, x0:x1]
-        kept_unknown = (own == UNKNOWN) & (inflated < INSCRIBED)
-        costs: Grid = np.where(kept_unknown, UNKNOWN, np.maximum(own, inflated)).astype(np.uint8)
-        return costs
+        # The InflationLayer writes over an unknown cell only from the inscribed cost up.
+        over_unknown = np.where(inflated >= INSCRIBED, inflated, UNKNOWN)
+        costs: Grid = np.where(own == UNKNOWN, over_unknown, np.maximum(own, inflated))
+        return costs.astype(np.uint8)
 
     def clear_outside(self, x: float, y: float, size: float) -> None:
         """Forget every cell outside the square `size` m wide around (x, y) m, as

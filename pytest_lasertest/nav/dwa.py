@@ -8,10 +8,13 @@ does), rolls each out for `sim_time` at constant velocity in steps of `sim_granu
 - obstacle (`occdist_scale`): the highest cost under the footprint along the way, the footprint
   grown with speed (`scaling_speed`, `max_scaling_factor`); a lethal cell under it rejects it;
 - path and alignment (`path_distance_bias` per cell): how far its end, and the point
-  `forward_point_distance` ahead of its end, lie from the global plan;
-- goal and goal-front (`goal_distance_bias` per cell): how far the same two points lie from the
-  local goal, the last point of the plan within the local window;
-- an end, or a forward point, within the inscribed radius of a lethal cell rejects it.
+  `forward_point_distance` ahead of its end, lie from the global plan (alignment only while the
+  local goal is further than that);
+- goal and goal-front (`goal_distance_bias` per cell): how far its end lies from the local goal,
+  the last point of the plan within the local window, and its forward point from a point
+  `forward_point_distance` beyond the local goal;
+- an end within the inscribed radius of a lethal cell rejects it; a forward point there costs
+  what base_local_planner's MapGrid charges an obstacle cell, the local window's cell count.
 
 The least score wins; the first sampled wins a tie. No valid trajectory is a failure, for
 move_base to handle.
@@ -94,6 +97,7 @@ class LocalPlanner:
         cost: InflationCost,
         period: float,
         resolution: float,
+        window: int,
     ) -> None:
         self.settings = settings
         self.period = period  # s, one control cycle: the dynamic window's reach
@@ -101,6 +105,9 @@ class LocalPlanner:
         # m: a lethal cell is a square, and costmap_2d checks the cells the footprint's outline
         # passes through, so the footprint meets one within half a cell of its centre.
         self.half_cell = resolution / 2.0
+        # m: MapGrid's distance for a cell in an obstacle, the local window's cell count in
+        # cells (`window` along each side).
+        self.obstacle_distance = resolution * window**2
         # Each edge as an outward normal and offset: signed distance = normal . point - offset.
         edges = np.roll(footprint, -1, axis=0) - footprint
         normals = np.column_stack([edges[:, 1], -edges[:, 0]])
@@ -161,29 +168,28 @@ class LocalPlanner:
         self, rollouts: Rollouts, pose: tuple[float, float, float], around: Surroundings
     ) -> FloatArray:
         """Each rollout's total cost, shape (S,); inf where rejected."""
-        settings = self.settings
-        ends = rollouts.ends
-        ahead = ends[:, :2] + settings.forward_point_distance * np.column_stack(
-            [np.cos(ends[:, 2]), np.sin(ends[:, 2])]
-        )
+        settings, lethal = self.settings, around.lethal
+        ends, reach = rollouts.ends[:, :2], settings.forward_point_distance
+        yaw = rollouts.ends[:, 2]
+        ahead = ends + reach * np.column_stack([np.cos(yaw), np.sin(yaw)])
+        # The local goal is the plan's last point in the window; the nose is drawn to a point
+        # forward_point_distance beyond it, on the bearing from the robot.
         local_goal = around.plan[-1] if len(around.plan) else np.array(around.goal)
-        to_goal = math.atan2(around.goal[1] - pose[1], around.goal[0] - pose[0])
-        front_goal = local_goal + settings.forward_point_distance * np.array(
-            [math.cos(to_goal), math.sin(to_goal)]
-        )
+        bearing = math.atan2(local_goal[1] - pose[1], local_goal[0] - pose[0])
+        front_goal = local_goal + reach * np.array([math.cos(bearing), math.sin(bearing)])
         # DWA scales a distance in cells by resolution x bias: the bias is per metre.
         path_bias, goal_bias = settings.path_distance_bias, settings.goal_distance_bias
         score = self._obstacle_scores(rollouts, around)
-        score = score + path_bias * _nearest(ends[:, :2], around.plan)
-        score += goal_bias * _distance(ends[:, :2], local_goal)
-        score += goal_bias * _distance(ahead, front_goal)
-        far = math.dist(pose[:2], around.goal) > settings.forward_point_distance
-        if far:
-            score += path_bias * _nearest(ahead, around.plan)
-        blocked = self._too_near(ends[:, :2], around.lethal)
-        if far:
-            blocked |= self._too_near(ahead, around.lethal)
-        return np.where(blocked, np.inf, score)
+        score = score + path_bias * _nearest(ends, around.plan)
+        score += goal_bias * _distance(ends, local_goal)
+        # A nose in an obstacle does not reject a sample: MapGrid charges its obstacle cost.
+        nose_blocked = self._too_near(ahead, lethal)
+        nose_to_goal = _distance(ahead, front_goal)
+        score += goal_bias * np.where(nose_blocked, self.obstacle_distance, nose_to_goal)
+        if math.dist(pose[:2], local_goal) > reach:  # nearer, DWA stops aligning the nose
+            nose_to_plan = _nearest(ahead, around.plan)
+            score += path_bias * np.where(nose_blocked, self.obstacle_distance, nose_to_plan)
+        return np.where(self._too_near(ends, lethal), np.inf, score)
 
     def _samples(self, velocity: tuple[float, float]) -> tuple[FloatArray, FloatArray]:
         """The sampled velocities within one cycle's reach, v outer and w inner, as DWA
@@ -204,17 +210,21 @@ class LocalPlanner:
         too_slow = (speed + EPSILON < settings.min_trans_vel) & (
             np.abs(w) + EPSILON < settings.min_rot_vel
         )
-        kept = ~too_slow & (speed - EPSILON <= settings.max_trans_vel)
+        # Standing still rolls out no step: the trajectory generator makes none of it.
+        standing = (v == 0.0) & (w == 0.0)
+        kept = ~too_slow & ~standing & (speed - EPSILON <= settings.max_trans_vel)
         return v[kept], w[kept]
 
     def _obstacle_scores(self, rollouts: Rollouts, around: Surroundings) -> FloatArray:
         """occdist_scale times the highest cost under each rollout's footprint, shape (S,);
         inf where a lethal cell lies under it."""
         settings, count = self.settings, len(rollouts.linear)
-        grow = (np.abs(rollouts.linear) - settings.scaling_speed) / (
-            settings.max_trans_vel - settings.scaling_speed
-        )
-        scale = 1.0 + settings.max_scaling_factor * np.clip(grow, 0.0, 1.0)  # (S,)
+        speed, slowest = np.abs(rollouts.linear), settings.scaling_speed
+        # getScalingFactor grows the footprint only above scaling_speed: when that is
+        # max_trans_vel or more, no sample is fast enough.
+        span = max(settings.max_trans_vel - slowest, EPSILON)
+        grow = np.where(speed > slowest, (speed - slowest) / span, 0.0)
+        scale = 1.0 + settings.max_scaling_factor * grow  # (S,)
         poses = rollouts.poses.reshape(-1, 3)
         near = _within(around.lethal, poses, self.reach * float(scale.max()))
         if not len(near):
@@ -308,8 +318,8 @@ class Oscillation:
             self.reset()
 
     def reset(self) -> None:
-        """Lift every restriction, as DWA does for a new plan."""
-        self.driving.only = self.turning.only = 0
+        """Forget the ways chosen and lift every restriction, as DWA does for a new plan."""
+        self.driving, self.turning = Way(), Way()
 
 
 def velocity_samples(low: float, high: float, count: int) -> FloatArray:

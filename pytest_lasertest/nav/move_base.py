@@ -72,11 +72,13 @@ class MoveBase:
             self.costmap.inflation,
             period,
             self.settings.costmap.resolution,
+            self.settings.costmap.cells,
         )
         self.state = State.PLANNING
         self.plan: FloatArray = np.zeros((0, 2))  # m, the global plan, pruned as it is driven
         self.recoveries = self._recoveries()
         self.recovery_index = 0
+        self.recovered: list[tuple[float, str]] = []  # (s, name): each recovery begun
         self._recovery: Recovery | None = None
         self._trigger: State | None = None  # which state last began a recovery
         self._command = (0.0, 0.0)
@@ -189,6 +191,7 @@ class MoveBase:
             self.state = State.DONE
             return 0.0, 0.0
         self._recovery = self.recoveries[self.recovery_index]()
+        self.recovered.append((time, self._recovery.name))
         command = self._recovery.step(pose, time)
         if command is None:
             self._end_recovery(time)
@@ -200,7 +203,8 @@ class MoveBase:
         self._oscillation_reset = time
         self.state = State.PLANNING
         self.recovery_index += 1
-        self._next_cycle = time  # move_base cycles again as soon as the behaviour returns
+        # The next cycle keeps the controller's clock: at once if the behaviour outlasted the
+        # period, as move_base's loop then runs late, else at the next tick.
 
     def _watch_oscillation(self, pose: Pose, time: float) -> None:
         """Reset the oscillation clock whenever the robot has moved far enough."""

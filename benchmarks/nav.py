@@ -1,0 +1,100 @@
+"""What one move_base planning cycle costs, against the physics it controls, side by side.
+
+A cycle is what the default controller does with a scan at its clocks: one costmap update
+(the paper's 720-beam, 50 Hz scan into the Husky's costmaps) and one DWA command. The robot
+drives the benchmark's four-obstacle scene with the Husky's navigation stack; each update and
+each command is timed as the run makes it. Right after, the same world is stepped bare through
+the run's wheel speeds, and the cost of one control period (1 / controller_frequency s) of that
+physics is what a cycle is compared with. The
+last line reads `planning cycle: C ms; ratio to the physics of one control period: Q` (medians).
+
+    python benchmarks/nav.py [--runs 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+from collections.abc import Callable
+from time import perf_counter
+from typing import Any
+
+from sim import PAPER, ROUTE, SCANNER, SCENES, SIMULATED, START, bare_physics
+
+from pytest_lasertest.geometry import Point2D
+from pytest_lasertest.nav.move_base import MoveBase
+from pytest_lasertest.robot import Robot
+from pytest_lasertest.sim.client import PhysicsClient
+from pytest_lasertest.sim.scenario import Scenario, run_scenario
+
+
+class TimedMoveBase(MoveBase):
+    """move_base, timing each costmap update and each DWA command it makes."""
+
+    def __init__(self, robot: Robot, route: tuple[Point2D, ...]) -> None:
+        super().__init__(robot, route)
+        self.updates: list[float] = []  # s
+        self.commands: list[float] = []  # s
+
+    def _start(self, pose: tuple[float, float, float], time: float) -> None:
+        super()._start(pose, time)
+        self.costmap.update = _timed(self.costmap.update, self.updates)  # type: ignore[method-assign]
+        command = self.local_planner.command
+        self.local_planner.command = _timed(command, self.commands)  # type: ignore[method-assign]
+
+
+def _timed(function: Callable[..., Any], into: list[float]) -> Callable[..., Any]:
+    """`function`, appending the wall time of each call to `into`."""
+
+    def timed(*arguments: Any) -> Any:
+        began = perf_counter()
+        result = function(*arguments)
+        into.append(perf_counter() - began)
+        return result
+
+    return timed
+
+
+def _keeping(made: list[TimedMoveBase]) -> Callable[[Robot, tuple[Point2D, ...]], TimedMoveBase]:
+    """A factory of timed controllers that appends each it makes to `made`."""
+
+    def make(robot: Robot, route: tuple[Point2D, ...]) -> TimedMoveBase:
+        made.append(TimedMoveBase(robot, route))
+        return made[-1]
+
+    return make
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--runs", type=int, default=3)
+    args = parser.parse_args()
+    cycles, ratios = [], []
+    obstacles = SCENES["beside the route"]
+    with PhysicsClient() as client:
+        for _ in range(args.runs):
+            made: list[TimedMoveBase] = []
+            scenario = Scenario(PAPER.robot, SCANNER, obstacles, START, ROUTE, SIMULATED, seed=0)
+            run = run_scenario(scenario, _keeping(made), client)
+            (controller,) = made
+            period = 1.0 / controller.settings.move_base.controller_frequency  # s
+            steps = round(period / scenario.time_step)
+            # The run's own wheel speeds, per step, as long as one control period.
+            bare = bare_physics(scenario, run.wheels, client) / len(run.wheels) * steps
+            update = statistics.median(controller.updates)
+            command = statistics.median(controller.commands)
+            print(
+                f"{len(controller.updates)} costmap updates: {update * 1e3:.2f} ms; "
+                f"{len(controller.commands)} DWA commands: {command * 1e3:.2f} ms; "
+                f"physics of one {period * 1e3:.0f} ms control period: {bare * 1e3:.2f} ms"
+            )
+            cycles.append(update + command)
+            ratios.append((update + command) / bare)
+    print(
+        f"planning cycle: {statistics.median(cycles) * 1e3:.2f} ms; "
+        f"ratio to the physics of one control period: {statistics.median(ratios):.2f}"
+    )
+
+
+if __name__ == "__main__":
+    main()
