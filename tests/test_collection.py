@@ -304,7 +304,7 @@ def test_the_sparser_scanner_drives_into_its_witness_and_the_denser_one_stops_sh
         [
             "the candidate fails where witness candidate-misses-1 stands: the obstacle the "
             "baseline reads and the other scanner misses",
-            "  pair       size (paper.lasertest.yaml:29)",
+            "  pair       size (paper.lasertest.yaml:40)",
             "  controller move_base (the default)",
             "  obstacle   cylinder of radius 0.025 m at * m high",
             # The paper's finding: the 32-beam robot stops short of the pole and never gets past.

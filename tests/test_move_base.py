@@ -219,3 +219,28 @@ def test_on_a_route_turning_through_the_lost_wedge_the_narrower_field_of_view_di
     narrow = run(turning.candidate.profile, obstacles, route=world.route)
     assert wide.digest() != narrow.digest()
     assert wide.verdicts.collision.margin != narrow.verdicts.collision.margin
+
+
+def test_replanning_on_a_clock_takes_the_32_beam_robot_round_the_pole_it_was_stuck_at(
+    thin_pole: Cylinder,
+) -> None:
+    # The Husky plans once (planner_frequency 0): its plan still runs through the pole.
+    replanning = Recorded(("move_base", "planner_frequency", 1.0))
+    result = run(PAIRS["size"].baseline.profile, (thin_pole,), replanning)
+    assert result.passed, result.verdicts.failures()
+
+
+def test_oscillation_timeout_starts_the_recoveries_of_a_robot_turning_on_the_spot(
+    thin_pole: Cylinder,
+) -> None:
+    husky = Recorded()
+    run(PAIRS["size"].baseline.profile, (thin_pole,), husky)
+    assert husky.made[0].recovered == []  # oscillation_timeout 0: it turns there for ever
+    watching = Recorded(("move_base", "oscillation_timeout", 5.0))
+    result = run(PAIRS["size"].baseline.profile, (thin_pole,), watching)
+    began, first = watching.made[0].recovered[0]
+    assert first == "conservative_reset"
+    # For the 5 s before, the robot stayed within oscillation_distance (0.5 m) of one spot.
+    window = (result.times > began - 5.0) & (result.times <= began)
+    positions = result.poses[window, :2]
+    assert np.hypot(*(positions - positions[-1]).T).max() < 0.5
