@@ -169,3 +169,37 @@ def _reference(x0: int, y0: int, x1: int, y1: int, longest: int | None) -> list[
             error -= major
     cells.append((x, y))
     return cells
+
+
+def test_the_freed_footprint_is_costmap_2d_convex_fill_cell_for_cell() -> None:
+    rng = np.random.default_rng(4)
+    blind = dataclasses.replace(SETTINGS, inf_is_valid=False)  # no ray clears anything
+    for _ in range(40):
+        costmap = Costmap(blind, FOOTPRINT)
+        robot = (rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-math.pi, math.pi))
+        costmap.update(scan(np.inf), robot)  # the window centres on the robot
+        costmap.grid[:] = LETHAL
+        costmap.update(scan(np.inf), robot)
+        freed = set(zip(*np.nonzero(costmap.grid == FREE)[::-1], strict=True))
+        assert freed == _convex_fill(costmap, robot)
+
+
+def _convex_fill(costmap: Costmap, robot: tuple[float, float, float]) -> set[tuple[int, int]]:
+    """costmap_2d's convexFillCells, one cell at a time: the outline's cells, edge by edge,
+    then each column filled between its lowest and highest outline cell."""
+    cos, sin = math.cos(robot[2]), math.sin(robot[2])
+    corners = [
+        costmap.cell_of(np.array([[robot[0] + cos * x - sin * y, robot[1] + sin * x + cos * y]]))
+        for x, y in FOOTPRINT
+    ]
+    cells = [(int(x[0]), int(y[0])) for x, y, _ in corners]
+    outline = [
+        cell
+        for (x0, y0), (x1, y1) in zip(cells, cells[1:] + cells[:1], strict=True)
+        for cell in _reference(x0, y0, x1, y1, None)
+    ]
+    filled = set()
+    for column in {x for x, _ in outline}:
+        rows = [y for x, y in outline if x == column]
+        filled |= {(column, row) for row in range(min(rows), max(rows) + 1)}
+    return filled

@@ -67,11 +67,7 @@ class Costmap:
         self.unseen = UNKNOWN if settings.track_unknown_space else FREE
         self.grid: Grid = np.full((settings.cells, settings.cells), self.unseen, dtype=np.uint8)
         self.origin = (0.0, 0.0)  # m, the world position of cell (0, 0)'s lower left corner
-        # costmap_2d inflates out to a whole number of cells.
-        reach = math.ceil(settings.inflation_radius / settings.resolution) * settings.resolution
-        self.inflation = InflationCost(
-            _inscribed_radius(footprint), reach, settings.cost_scaling_factor
-        )
+        self.inflation = InflationCost.of(settings, footprint)
 
     def update(self, scan: LaserScan, robot: tuple[float, float, float]) -> None:
         """One scan's update, the robot at pose [x, y, yaw] (m, m, rad) in the odom frame."""
@@ -204,27 +200,22 @@ class Costmap:
         """Free the cells the footprint at pose [x, y, yaw] covers: each column between its
         outline's lowest and highest cell, as costmap_2d's convexFillCells does."""
         corners_x, corners_y, _ = self.cell_of(place(self.footprint, np.array(robot)))
-        following = np.roll(np.arange(len(corners_x)), -1)
-        outline = [
-            ray_cells(int(x), int(y), corners_x[after : after + 1], corners_y[after : after + 1])
-            for x, y, after in zip(corners_x, corners_y, following, strict=True)
-        ]
-        columns = np.concatenate([x for x, _ in outline])
-        rows = np.concatenate([y for _, y in outline])
+        # The outline, edge by edge from each corner to the next, stays in the corners' box.
+        left, bottom = int(corners_x.min()), int(corners_y.min())
+        box_x, box_y = corners_x - left, corners_y - bottom
+        width = int(box_x.max()) + 1
+        following = np.roll(np.arange(len(box_x)), -1)
+        outline = ray_indices(box_x, box_y, box_x[following], box_y[following], width)
+        rows, columns = np.divmod(outline, width)
+        low, high = np.full(width, np.iinfo(np.int32).max), np.full(width, -1)
+        np.minimum.at(low, columns, rows)
+        np.maximum.at(high, columns, rows)
+        row = np.arange(int(high.max()) + 1)[:, np.newaxis]
+        covered_rows, covered_columns = np.nonzero((row >= low) & (row <= high))
+        x, y = covered_columns + left, covered_rows + bottom
         cells = self.settings.cells
-        inside = (columns >= 0) & (columns < cells)
-        if not inside.any():
-            return
-        columns, rows = columns[inside], rows[inside]
-        first = int(columns.min())
-        width = int(columns.max()) - first + 1
-        low, high = np.full(width, cells), np.full(width, -1)
-        np.minimum.at(low, columns - first, rows)
-        np.maximum.at(high, columns - first, rows)
-        bottom, top = max(int(low.min()), 0), min(int(high.max()), cells - 1)
-        row = np.arange(bottom, top + 1)[:, np.newaxis]
-        block = self.grid[bottom : top + 1, first : first + width]
-        block[(row >= low) & (row <= high)] = FREE
+        inside = (x >= 0) & (x < cells) & (y >= 0) & (y < cells)
+        self.grid[y[inside], x[inside]] = FREE
 
 
 @dataclass(frozen=True)
@@ -236,6 +227,14 @@ class InflationCost:
     inscribed: float  # m, the footprint's inscribed radius
     inflation_radius: float  # m
     cost_scaling_factor: float  # 1/m
+
+    @classmethod
+    def of(cls, settings: CostmapSettings, footprint: FloatArray) -> InflationCost:
+        """The inflation of a costmap with `settings` around `footprint` (V, 2) m."""
+        # costmap_2d inflates out to a whole number of cells.
+        cells = math.ceil(settings.inflation_radius / settings.resolution)
+        radius = cells * settings.resolution
+        return cls(_inscribed_radius(footprint), radius, settings.cost_scaling_factor)
 
     def __call__(self, distance: FloatArray) -> FloatArray:
         """The cost at each distance (m), same shape."""
@@ -261,14 +260,15 @@ def ray_cells(
 
 
 def ray_indices(
-    start_x: int,
-    start_y: int,
+    start_x: int | IntArray,
+    start_y: int | IntArray,
     end_x: IntArray,
     end_y: IntArray,
     stride: int,
     longest: int | None = None,
 ) -> IntArray:
-    """`ray_cells` as flat indices x + y * stride into a grid `stride` cells wide, shape (M,).
+    """`ray_cells` as flat indices x + y * stride into a grid `stride` cells wide, shape (M,);
+    each ray may start at a cell of its own (K,).
 
     Every ray is stepped at once: each visited cell is the start, `step` cells along the
     ray's longer axis and `wraps` along the other, and `wraps` is Bresenham's error count.
@@ -291,7 +291,8 @@ def ray_indices(
     wraps //= np.repeat(np.maximum(major, 1).astype(np.int32), counts)
     index = step * np.repeat(np.where(along_x, unit_x, unit_y).astype(np.int32), counts)
     index += wraps * np.repeat(np.where(along_x, unit_y, unit_x).astype(np.int32), counts)
-    cells: IntArray = index + (start_x + start_y * stride)
+    origin = np.asarray(start_x + start_y * stride)
+    cells: IntArray = index + (np.repeat(origin, counts) if origin.ndim else origin)
     return cells
 
 

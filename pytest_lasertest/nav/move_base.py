@@ -31,7 +31,7 @@ from enum import Enum
 import numpy as np
 
 from pytest_lasertest.geometry import FloatArray, Point2D
-from pytest_lasertest.nav.costmap import LETHAL, Costmap, CostmapSettings
+from pytest_lasertest.nav.costmap import LETHAL, Costmap, CostmapSettings, InflationCost
 from pytest_lasertest.nav.dwa import LocalPlanner, Surroundings
 from pytest_lasertest.nav.navfn import plan_path
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
@@ -44,10 +44,20 @@ PRUNE_DISTANCE = 1.0  # m
 
 
 class State(Enum):
+    """move_base's states, and one for a run it is done with."""
+
     PLANNING = "planning"
     CONTROLLING = "controlling"
     CLEARING = "clearing"
     DONE = "done"  # the last goal reached, or given up
+
+
+class Trigger(Enum):
+    """What made move_base recover: each resets the recoveries once it stops happening."""
+
+    PLANNING = "no plan"
+    CONTROLLING = "no valid command"
+    OSCILLATION = "oscillation"
 
 
 class MoveBase:
@@ -63,24 +73,25 @@ class MoveBase:
         self.route = route
         self.goal_index = 0
         self.footprint = robot.footprint_array()  # (V, 2) m
-        # Made at the first scan: the global costmap's window depends on where the robot is.
-        self.costmap = Costmap(_global_settings(self.settings, np.zeros((1, 2))), self.footprint)
         period = 1.0 / self.settings.move_base.controller_frequency  # s
+        costmap = self.settings.costmap
         self.local_planner = LocalPlanner(
             self.settings.dwa,
             self.footprint,
-            self.costmap.inflation,
+            InflationCost.of(costmap, self.footprint),
             period,
-            self.settings.costmap.resolution,
-            self.settings.costmap.cells,
+            costmap.resolution,
+            costmap.cells,
         )
         self.state = State.PLANNING
         self.plan: FloatArray = np.zeros((0, 2))  # m, the global plan, pruned as it is driven
-        self.recoveries = self._recoveries()
         self.recovery_index = 0
         self.recovered: list[tuple[float, str]] = []  # (s, name): each recovery begun
+        # Made at the first scan: the global costmap's window depends on where the robot is.
+        self._costmap: Costmap | None = None
+        self.recoveries: list[Callable[[], Recovery]] = []
         self._recovery: Recovery | None = None
-        self._trigger: State | None = None  # which state last began a recovery
+        self._trigger: Trigger | None = None  # what began the last recovery
         self._command = (0.0, 0.0)
         self._next_update = -math.inf  # s
         self._next_cycle = -math.inf  # s
@@ -88,10 +99,17 @@ class MoveBase:
         self._valid_plan = self._valid_control = self._oscillation_reset = -math.inf  # s
         self._oscillation_pose: tuple[float, float] | None = None
 
+    @property
+    def costmap(self) -> Costmap:
+        """The costmap, global and local in one (see the module docstring)."""
+        if self._costmap is None:
+            raise RuntimeError("move_base has no costmap before its first scan")
+        return self._costmap
+
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
         """The command of the latest cycle; the costmap and move_base each on their clock."""
         pose = (odometry.x, odometry.y, odometry.yaw)
-        if self._valid_plan == -math.inf:
+        if self._costmap is None:
             self._start(pose, time)
         if time >= self._next_update:
             self._next_update = time + 1.0 / self.settings.costmap.update_frequency
@@ -111,7 +129,8 @@ class MoveBase:
         if self.state is State.DONE:
             return 0.0, 0.0
         self._watch_oscillation(pose, time)
-        if self.state is State.PLANNING or time >= self._next_plan:
+        replanning = self.state is State.CONTROLLING and time >= self._next_plan
+        if self.state is State.PLANNING or replanning:
             self._replan(pose, time)
         if self.state is State.CONTROLLING:
             return self._control(pose, velocity, time)
@@ -122,7 +141,7 @@ class MoveBase:
     def _start(self, pose: Pose, time: float) -> None:
         """At the first scan: the global costmap around the robot, and the first goal."""
         points = np.array([pose[:2], *((point.x, point.y) for point in self.route)])
-        self.costmap = Costmap(_global_settings(self.settings, points), self.footprint)
+        self._costmap = Costmap(_global_settings(self.settings, points), self.footprint)
         self.recoveries = self._recoveries()
         self._new_goal(time)
 
@@ -141,14 +160,14 @@ class MoveBase:
             self.plan = plan
             self.local_planner.oscillation.reset()
             self._valid_plan = time
-            if self._trigger is State.PLANNING:
+            if self._trigger is Trigger.PLANNING:
                 self.recovery_index = 0
             if self.state is State.PLANNING:
                 self.state = State.CONTROLLING
         elif self.state is State.PLANNING and time > self._valid_plan + (
             self.settings.move_base.planner_patience
         ):
-            self.state, self._trigger = State.CLEARING, State.PLANNING
+            self.state, self._trigger = State.CLEARING, Trigger.PLANNING
 
     def _control(
         self, pose: Pose, velocity: tuple[float, float], time: float
@@ -161,16 +180,16 @@ class MoveBase:
         if move_base.oscillation_timeout > 0.0 and time > (
             self._oscillation_reset + move_base.oscillation_timeout
         ):
-            self.state, self._trigger = State.CLEARING, State.CONTROLLING
+            self.state, self._trigger = State.CLEARING, Trigger.OSCILLATION
             return 0.0, 0.0
         command = self.local_planner.command(pose, velocity, self._surroundings(pose))
         if command is not None:
             self._valid_control = time
-            if self._trigger is State.CONTROLLING:
+            if self._trigger is Trigger.CONTROLLING:
                 self.recovery_index = 0
             return command
         if time > self._valid_control + move_base.controller_patience:
-            self.state, self._trigger = State.CLEARING, State.CONTROLLING
+            self.state, self._trigger = State.CLEARING, Trigger.CONTROLLING
         else:
             self.state, self._valid_plan = State.PLANNING, time
         return 0.0, 0.0
@@ -213,7 +232,7 @@ class MoveBase:
             self.settings.move_base.oscillation_distance
         ):
             self._oscillation_pose, self._oscillation_reset = here, time
-            if self._trigger is State.CONTROLLING and self.settings.move_base.oscillation_timeout:
+            if self._trigger is Trigger.OSCILLATION:
                 self.recovery_index = 0
 
     def _make_plan(self, pose: Pose) -> FloatArray | None:
@@ -243,17 +262,16 @@ class MoveBase:
         return np.vstack([points, [[goal.x, goal.y]]])
 
     def _surroundings(self, pose: Pose) -> Surroundings:
-        """What DWA scores against: the plan pruned behind the robot and cut to the local
-        window, and the lethal cells near the robot."""
+        """What DWA scores against: the plan, pruned behind the robot, from its first point in
+        the local window to the last before it leaves it, and the lethal cells near the
+        robot."""
         here = np.array(pose[:2])
         near = np.hypot(*(self.plan - here).T) < PRUNE_DISTANCE
         if near.any():
             self.plan = self.plan[int(np.argmax(near)) :]
-        reach = self.settings.costmap.size / 2.0
-        inside = np.hypot(*(self.plan - here).T) <= reach
-        # From the first point inside the local window to the last before the plan leaves it.
+        inside = np.hypot(*(self.plan - here).T) <= self.settings.costmap.size / 2.0
         local = self.plan[int(np.argmax(inside)) :] if inside.any() else self.plan[:0]
-        leaves = ~(np.hypot(*(local - here).T) <= reach)
+        leaves = ~inside[len(self.plan) - len(local) :]
         if leaves.any():
             local = local[: int(np.argmax(leaves))]
         goal = self.route[self.goal_index]
@@ -278,16 +296,25 @@ class MoveBase:
         first if it is enabled: each call starts a fresh run of one."""
         move_base, costmap = self.settings.move_base, self.costmap
         # move_base's aggressive reset keeps four circumscribed radii around the robot.
-        aggressive = 4.0 * self.local_planner.reach
-        rotations = 1 if move_base.clearing_rotation_allowed else 0
-        return [
-            lambda: ClearCostmap("conservative_reset", costmap, move_base.conservative_reset_dist),
-            *[lambda: BackUp(self._is_clear, move_base.back_up_distance, move_base.back_up_speed)]
-            * move_base.back_up_recovery,
-            *[lambda: RotateInPlace(self._is_clear)] * rotations,
-            lambda: ClearCostmap("aggressive_reset", costmap, aggressive),
-            *[lambda: RotateInPlace(self._is_clear)] * rotations,
+        aggressive = 4.0 * self.local_planner.reach  # m
+
+        def rotate() -> Recovery:
+            return RotateInPlace(self._is_clear)
+
+        def back_up() -> Recovery:
+            return BackUp(self._is_clear, move_base.back_up_distance, move_base.back_up_speed)
+
+        recoveries: list[Callable[[], Recovery]] = [
+            lambda: ClearCostmap("conservative_reset", costmap, move_base.conservative_reset_dist)
         ]
+        if move_base.back_up_recovery:
+            recoveries.append(back_up)
+        if move_base.clearing_rotation_allowed:
+            recoveries.append(rotate)
+        recoveries.append(lambda: ClearCostmap("aggressive_reset", costmap, aggressive))
+        if move_base.clearing_rotation_allowed:
+            recoveries.append(rotate)
+        return recoveries
 
     def _is_clear(self, poses: FloatArray) -> bool:
         """Whether the footprint at every pose (P, 3) is clear of the lethal cells."""
