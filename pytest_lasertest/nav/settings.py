@@ -67,8 +67,8 @@ class NavigationSettings:
 
     @classmethod
     def from_parameters(cls, parameters: tuple[Parameter, ...]) -> NavigationSettings:
-        """The defaults with `parameters` set, later ones winning; a name that is not a
-        parameter is a ValueError (the pairs-file reader checks them with `parameter_types`)."""
+        """The defaults with `parameters` set, later ones winning. The names must be those of
+        `parameter_types()`, as the pairs-file reader checks them; another fails here."""
         sections: dict[str, dict[str, Any]] = {}
         for section, name, value in parameters:
             sections.setdefault(section, {})[name] = value

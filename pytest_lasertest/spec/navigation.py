@@ -67,7 +67,9 @@ def _value(node: SpecNode, kind: type) -> float | bool:
         if not isinstance(node.value, bool):
             raise node.error(f"{name} is true or false, not {node.value!r}", "write true or false")
         return node.value
-    value: float = node.whole_number() if kind is int else node.number("ROS's unit for it")
+    value: float = (
+        node.whole_number() if kind is int else node.number("the unit ROS gives it (m, s, Hz, rad)")
+    )
     if name in MUST_BE_POSITIVE and value <= 0:
         raise node.error(f"{name} must be above zero, not {value}", f"write a positive {name}")
     if name not in MAY_BE_NEGATIVE and value < 0:
