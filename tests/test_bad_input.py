@@ -292,13 +292,21 @@ CASES = {
 }
 
 
-def assert_one_clean_error(result: pytest.RunResult, line: int, field: str, case: Case) -> None:
-    """The run failed with exactly this error, and nothing of our code's insides leaked."""
+def assert_one_clean_error(
+    result: pytest.RunResult,
+    line: int,
+    field: str,
+    case: Case,
+    file: str = "gate.lasertest.yaml",
+) -> None:
+    """The run failed with exactly this error in `file`, and nothing of our code's insides
+    leaked."""
     assert result.ret == pytest.ExitCode.TESTS_FAILED
     result.assert_outcomes(errors=1)
     output = result.stdout.lines
-    head = f"gate.lasertest.yaml:{line}: {field}: " if field else f"gate.lasertest.yaml:{line}: "
-    index = next(i for i, text in enumerate(output) if text.startswith(head))
+    head = f"{file}:{line}: {field}: " if field else f"{file}:{line}: "
+    index = next((i for i, text in enumerate(output) if text.startswith(head)), None)
+    assert index is not None, f"no line starts with {head!r}"
     assert case.problem in output[index]
     assert output[index + 1].startswith("  fix: ")
     assert case.fix in output[index + 1]

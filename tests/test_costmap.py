@@ -15,7 +15,7 @@ from pytest_lasertest.nav.costmap import (
     Costmap,
     CostmapSettings,
     lethal_distances,
-    ray_cells,
+    ray_indices,
 )
 from pytest_lasertest.nav.protocol import LaserScan
 from pytest_lasertest.sensor import LaserProfile
@@ -140,13 +140,19 @@ def test_the_distance_to_lethal_cells_is_the_exact_euclidean_one_within_reach() 
         assert np.all(distance[~within] > 8)
 
 
-def test_the_ray_cells_are_those_of_costmap_2d_bresenham() -> None:
-    rng = np.random.default_rng(2)
-    ends = rng.integers(-30, 31, size=(200, 2))
-    for longest in (None, 12):
-        xs, ys = ray_cells(3, -4, 3 + ends[:, 0], -4 + ends[:, 1], longest)
-        expected = [cell for x, y in ends for cell in _reference(3, -4, 3 + x, -4 + y, longest)]
-        assert list(zip(xs.tolist(), ys.tolist(), strict=True)) == expected
+@pytest.mark.parametrize("longest", [None, 9, 12, 25])
+@pytest.mark.parametrize("start", [(0, 0), (30, 17), (59, 59), (5, 44), (3, 4)])
+def test_the_ray_cells_are_those_of_costmap_2d_bresenham(
+    start: tuple[int, int], longest: int | None
+) -> None:
+    cells = 60  # a window 60 cells wide: the rays' cells as flat indices x + y * 60
+    rng = np.random.default_rng(start[0] * 100 + start[1])
+    ends = rng.integers(0, cells, size=(150, 2))
+    ends[:3] = [start, (start[0], 0), (0, start[1])]  # no ray, and the two axes
+    index = ray_indices(*start, ends[:, 0], ends[:, 1], cells, longest)
+    ys, xs = np.divmod(index, cells)
+    expected = [cell for x, y in ends for cell in _reference(*start, x, y, longest)]
+    assert list(zip(xs.tolist(), ys.tolist(), strict=True)) == expected
 
 
 def _reference(x0: int, y0: int, x1: int, y1: int, longest: int | None) -> list[tuple[int, int]]:

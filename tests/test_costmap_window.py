@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import numpy.typing as npt
 import pytest
@@ -15,29 +13,12 @@ from pytest_lasertest.nav.costmap import (
     UNKNOWN,
     Costmap,
     CostmapSettings,
-    ray_cells,
-    ray_indices,
 )
-from pytest_lasertest.nav.protocol import LaserScan
-from tests.conftest import profile
+from tests.test_costmap import cost_at, scan
 
-# Three beams, -90, 0 and +90 degrees, from a laser at the base origin.
-SCANNER = profile(samples=3, min_angle=-math.pi / 2, max_angle=math.pi / 2, range_max=5.0)
 # Inscribed radius 0.32 m: not a whole number of 5 cm cells, so no distance ties with it.
 FOOTPRINT = np.array([[-0.5, -0.32], [0.5, -0.32], [0.5, 0.32], [-0.5, 0.32]])
 Mask = npt.NDArray[np.bool_]
-
-
-def scan(ahead: float) -> LaserScan:
-    """A scan reading `ahead` m straight ahead and nothing either side."""
-    ranges = np.array([np.inf, ahead, np.inf])
-    return LaserScan(0.0, ranges, SCANNER.to_laserscan_meta(), SCANNER.pose)
-
-
-def cost_at(costmap: Costmap, x: float, y: float) -> int:
-    cell_x, cell_y, inside = costmap.cell_of(np.array([[x, y]]))
-    assert inside[0]
-    return int(costmap.grid[cell_y[0], cell_x[0]])
 
 
 def random_grid(costmap: Costmap, seed: int, lethal: float, unknown: float) -> None:
@@ -143,23 +124,6 @@ def test_the_costs_of_a_block_are_the_whole_windows_costs_cut_to_that_block(
     np.testing.assert_array_equal(block, whole[rows, columns])
     assert (whole == INSCRIBED).any()
     assert ((whole > FREE) & (whole < INSCRIBED)).any()
-
-
-# --- flat ray indices ---
-
-
-@pytest.mark.parametrize("longest", [None, 9, 25])
-@pytest.mark.parametrize("start", [(0, 0), (30, 17), (59, 59), (5, 44)])
-def test_ray_indices_are_the_ray_cells_flattened(
-    start: tuple[int, int], longest: int | None
-) -> None:
-    cells = 60
-    rng = np.random.default_rng(start[0] * 100 + start[1])
-    ends = rng.integers(0, cells, size=(150, 2))
-    ends[:3] = [start, (start[0], 0), (0, start[1])]  # no ray, and the two axes
-    xs, ys = ray_cells(*start, ends[:, 0], ends[:, 1], longest)
-    index = ray_indices(*start, ends[:, 0], ends[:, 1], cells, longest)
-    np.testing.assert_array_equal(index, xs + ys * cells)
 
 
 # --- clear_outside ---

@@ -76,8 +76,7 @@ def first_scan_marks(profile: LaserProfile) -> np.ndarray:
     scan = LaserScan(0.0, nothing, profile.to_laserscan_meta(), profile.pose)
     controller.observe(scan, Odometry(0.0, 0.0, 0.0, 0.0, 0.0), 0.0)
     rows, columns = np.nonzero(controller.costmap.grid == LETHAL)
-    resolution = controller.costmap.settings.resolution
-    return (np.column_stack([columns, rows]) + 0.5) * resolution + controller.costmap.origin
+    return controller.costmap.centres(columns, rows)
 
 
 def test_the_5_m_robot_marks_a_phantom_arc_5_m_ahead_across_its_field_of_view() -> None:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
@@ -10,6 +9,7 @@ import pytest
 from pytest_lasertest.nav.settings import NavigationSettings
 from pytest_lasertest.spec.bundled import bundled_robots
 from pytest_lasertest.spec.pairs import load_pairs_file
+from tests.test_bad_input import Case, assert_one_clean_error
 
 # Line numbers matter: the cases below break one line of it.
 NAV_PAIRS = """\
@@ -25,18 +25,6 @@ navigation:
 pairs:
   longer: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
 """
-
-
-@dataclass(frozen=True)
-class Case:
-    """One way to break NAV_PAIRS, and the error it must produce."""
-
-    old: str
-    new: str
-    line: int
-    field: str
-    problem: str
-    fix: str
 
 
 CASES = {
@@ -123,22 +111,6 @@ CASES = {
 }
 
 
-def assert_one_clean_error(result: pytest.RunResult, file: str, case: Case) -> None:
-    """The run failed with exactly this error, and nothing of our code's insides leaked."""
-    assert result.ret == pytest.ExitCode.TESTS_FAILED
-    result.assert_outcomes(errors=1)
-    output = result.stdout.lines
-    head = f"{file}:{case.line}: {case.field}: "
-    index = next((i for i, text in enumerate(output) if text.startswith(head)), None)
-    assert index is not None, f"no line starts with {head!r}"
-    assert case.problem in output[index]
-    assert output[index + 1].startswith("  fix: ")
-    assert case.fix in output[index + 1]
-    result.stdout.no_fnmatch_line("*Traceback*")
-    result.stdout.no_re_match_line(r".*\.py:\d+")
-    result.stdout.no_fnmatch_line("*CollectError*")
-
-
 @pytest.mark.parametrize("case", CASES.values(), ids=CASES.keys())
 def test_a_broken_navigation_section_is_one_collection_error_naming_line_field_and_fix(
     pytester: pytest.Pytester, case: Case
@@ -146,7 +118,7 @@ def test_a_broken_navigation_section_is_one_collection_error_naming_line_field_a
     assert case.old in NAV_PAIRS
     (pytester.path / "gate.lasertest.yaml").write_text(NAV_PAIRS.replace(case.old, case.new, 1))
     result = pytester.runpytest()
-    assert_one_clean_error(result, "gate.lasertest.yaml", case)
+    assert_one_clean_error(result, case.line, case.field, case)
 
 
 def test_a_valid_navigation_section_loads(tmp_path: Path) -> None:
@@ -226,7 +198,9 @@ def test_a_robot_file_naming_a_missing_navigation_file_is_an_error_at_its_line(
         "robots/mybot/missing.yaml does not exist",
         "give the path of a navigation YAML file relative to this robot file",
     )
-    assert_one_clean_error(result, "robots/mybot/robot.yaml", missing)
+    assert_one_clean_error(
+        result, missing.line, missing.field, missing, file="robots/mybot/robot.yaml"
+    )
 
 
 def test_a_robot_navigation_file_with_a_bad_parameter_is_an_error_at_its_own_line(
@@ -245,4 +219,6 @@ def test_a_robot_navigation_file_with_a_bad_parameter_is_an_error_at_its_own_lin
         "unknown key 'acc_lim_th'",
         "did you mean 'acc_lim_theta'?",
     )
-    assert_one_clean_error(result, "robots/mybot/nav.yaml", renamed)
+    assert_one_clean_error(
+        result, renamed.line, renamed.field, renamed, file="robots/mybot/nav.yaml"
+    )

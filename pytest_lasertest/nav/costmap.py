@@ -86,6 +86,12 @@ class Costmap:
         cells = self.settings.cells
         return x, y, (x >= 0) & (x < cells) & (y >= 0) & (y < cells)
 
+    def centres(self, x: IntArray, y: IntArray) -> FloatArray:
+        """The world positions (K, 2) m of the centres of cells (x, y), (K,) each."""
+        cells = np.column_stack([x, y]).astype(np.float64)
+        centres: FloatArray = (cells + 0.5) * self.settings.resolution + np.array(self.origin)
+        return centres
+
     def costs(self, columns: slice = slice(None), rows: slice = slice(None)) -> Grid:
         """The costs of the window's block of `columns` and `rows` (all by default) with the
         lethal cells inflated, indexed [y, x]."""
@@ -245,20 +251,6 @@ class InflationCost:
         return costs
 
 
-def ray_cells(
-    start_x: int, start_y: int, end_x: IntArray, end_y: IntArray, longest: int | None = None
-) -> tuple[IntArray, IntArray]:
-    """The cells costmap_2d's raytraceLine visits from one start cell to each end cell (K,):
-    steps along the longer axis, the other stepping when its error wraps, then the last cell;
-    at most `longest` cells of length (scaled along the longer axis), shape (M,) each."""
-    # Traced from (0, 0), cell (x, y) is the index x + y * stride, with room for any x.
-    reach = int(np.abs(end_x - start_x).max(initial=0)) + 1
-    stride = 2 * reach + 1
-    index = ray_indices(0, 0, end_x - start_x, end_y - start_y, stride, longest)
-    y, x = np.divmod(index + reach, stride)
-    return (x - reach + start_x).astype(np.int64), (y + start_y).astype(np.int64)
-
-
 def ray_indices(
     start_x: int | IntArray,
     start_y: int | IntArray,
@@ -267,8 +259,11 @@ def ray_indices(
     stride: int,
     longest: int | None = None,
 ) -> IntArray:
-    """`ray_cells` as flat indices x + y * stride into a grid `stride` cells wide, shape (M,);
-    each ray may start at a cell of its own (K,).
+    """The cells costmap_2d's raytraceLine visits from a start cell to each end cell (K,), as
+    flat indices x + y * stride into a grid `stride` cells wide, shape (M,): steps along the
+    longer axis, the other stepping when its error wraps, then the last cell; at most
+    `longest` cells of length (scaled along the longer axis). Each ray may start at a cell of
+    its own (K,).
 
     Every ray is stepped at once: each visited cell is the start, `step` cells along the
     ray's longer axis and `wraps` along the other, and `wraps` is Bresenham's error count.

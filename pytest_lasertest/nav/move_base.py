@@ -257,8 +257,7 @@ class MoveBase:
         )
         if path is None:
             return None
-        corner = np.array([columns.start, rows.start])
-        points: FloatArray = (path + corner + 0.5) * resolution + np.array(self.costmap.origin)
+        points = self.costmap.centres(path[:, 0] + columns.start, path[:, 1] + rows.start)
         return np.vstack([points, [[goal.x, goal.y]]])
 
     def _surroundings(self, pose: Pose) -> Surroundings:
@@ -287,9 +286,7 @@ class MoveBase:
         x0, y0 = max(int(x[0]), 0), max(int(y[0]), 0)
         block = self.costmap.grid[y0 : min(y0 + span, cells), x0 : min(x0 + span, cells)]
         rows, columns = np.nonzero(block == LETHAL)
-        cells_xy = np.column_stack([columns + x0, rows + y0]).astype(np.float64)
-        centres: FloatArray = (cells_xy + 0.5) * resolution + np.array(self.costmap.origin)
-        return centres
+        return self.costmap.centres(columns + x0, rows + y0)
 
     def _recoveries(self) -> list[Callable[[], Recovery]]:
         """move_base's default recovery behaviours in order, with the back-up one after the
