@@ -1,7 +1,8 @@
 """Collection nodes: a pairs file, and the items it yields for each pair.
 
 Each pair yields `PAIR[coverage]`, its control item `PAIR[no-obstacle]` (`drive_item.py`) and
-its placement items (`placement_item.py`). The pairs file chooses the controller its items drive
+its placement items (`placement_item.py`); a pair that pins placements yields only its pinned
+items (`pinned_item.py`). The pairs file chooses the controller its items drive
 with: its own `controller:`, else a conftest's `pytest_lasertest_make_controller`, else the
 default.
 """
@@ -20,6 +21,7 @@ from pytest_lasertest.coverage import CoverageChange, CoverageComparison, compar
 from pytest_lasertest.drive_item import CONTROL, ControlItem
 from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
+from pytest_lasertest.pinned_item import pinned_items
 from pytest_lasertest.placement_item import placement_items
 from pytest_lasertest.sensor import LaserProfile
 from pytest_lasertest.spec import Location, Pair, PairsFile, SpecError, load_pairs_file
@@ -42,6 +44,9 @@ class PairFile(pytest.File):
             raise self.CollectError(str(error)) from None
         items: list[pytest.Item] = []
         for pair in spec.pairs:
+            if pair.placements:
+                items += pinned_items(self, spec, pair, controller)
+                continue
             items.append(
                 CoverageItem.from_parent(self, name=f"{pair.name}[coverage]", spec=spec, pair=pair)
             )

@@ -16,7 +16,7 @@ from typing import Any
 import pytest
 from _pytest._code.code import TerminalRepr, TracebackStyle
 
-from pytest_lasertest.drives import PairDrive, drive_lines, drive_pair
+from pytest_lasertest.drives import PairDrive, RunCache, drive_lines, drive_pair
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.spec import Pair, PairsFile
@@ -24,6 +24,7 @@ from pytest_lasertest.spec.controller import ControllerChoice
 
 CONTROLS_KEY = pytest.StashKey[dict[tuple[Path, str], PairDrive]]()
 PHYSICS_KEY = pytest.StashKey[PhysicsClient]()
+CACHE_KEY = pytest.StashKey[RunCache]()
 CONTROL = "no-obstacle"
 
 
@@ -48,6 +49,13 @@ def physics_client(config: pytest.Config) -> PhysicsClient:
     return config.stash[PHYSICS_KEY]
 
 
+def run_cache(config: pytest.Config) -> RunCache:
+    """The process's runs, by scenario: no scenario is simulated twice in a session."""
+    if CACHE_KEY not in config.stash:
+        config.stash[CACHE_KEY] = RunCache()
+    return config.stash[CACHE_KEY]
+
+
 def control_drive(
     config: pytest.Config, spec: PairsFile, pair: Pair, controller: ControllerChoice
 ) -> PairDrive:
@@ -58,7 +66,8 @@ def control_drive(
     if key not in controls:
         seed = config.stash[OPTIONS_KEY].seed
         client = physics_client(config)
-        controls[key] = drive_pair(spec, pair, (), seed, controller.factory, client)
+        cache = run_cache(config)
+        controls[key] = drive_pair(spec, pair, (), seed, controller, client, cache)
     return controls[key]
 
 

@@ -3,11 +3,12 @@
 The baseline and the candidate are the same robot with different scanners: each drives the
 pairs file's route with a fresh controller from the same factory (the one the pairs file, a
 conftest hook or the default chose), in a world holding the given obstacles (none for the pair's
-control run), with scan noise from the run's seed.
+control run), with scan noise from the run's seed. Runs go through the session's `RunCache`.
 """
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from dataclasses import dataclass
 
 from pytest_lasertest.geometry import Obstacle
@@ -18,6 +19,7 @@ from pytest_lasertest.sensor import LaserProfile
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
 from pytest_lasertest.spec import Pair, PairsFile
+from pytest_lasertest.spec.controller import ControllerChoice
 
 
 @dataclass(frozen=True, eq=False)
@@ -36,14 +38,50 @@ class PairDrive:
 
     def properties(self) -> list[tuple[str, object]]:
         """Each oracle's margin and outcome for both robots, for JUnit XML and pytest-xdist."""
-        rows: list[tuple[str, object]] = []
-        for side, run in (("baseline", self.baseline), ("candidate", self.candidate)):
-            for oracle, verdict in run.verdicts.named():
-                rows.append((f"lasertest.{side}.{oracle}", "pass" if verdict.passed else "fail"))
-                margin = round(float(verdict.margin), 4)  # m; a plain float crosses to xdist
-                rows.append((f"lasertest.{side}.{oracle}_margin", margin))
-            rows.append((f"lasertest.{side}.trajectory", run.digest()[:16]))
-        return rows
+        return run_properties("baseline", self.baseline) + run_properties(
+            "candidate", self.candidate
+        )
+
+
+def run_properties(side: str, run: Run) -> list[tuple[str, object]]:
+    """Each oracle's outcome and margin in one robot's run, and its trajectory's digest."""
+    rows: list[tuple[str, object]] = []
+    for oracle, verdict in run.verdicts.named():
+        rows.append((f"lasertest.{side}.{oracle}", "pass" if verdict.passed else "fail"))
+        margin = round(float(verdict.margin), 4)  # m; a plain float crosses to xdist
+        rows.append((f"lasertest.{side}.{oracle}_margin", margin))
+    rows.append((f"lasertest.{side}.trajectory", run.digest()[:16]))
+    return rows
+
+
+class RunCache:
+    """The runs of one session by scenario and controller: shrinking a failure and classifying
+    it revisit scenarios, and a scenario's run never changes, so none is simulated twice.
+
+    The least recently used runs are dropped beyond `size`, which bounds the memory (a run of
+    60 s keeps about 0.2 MB of trajectory).
+    """
+
+    def __init__(self, size: int = 256) -> None:
+        self.size = size
+        self.simulations = 0  # runs simulated, not found here
+        self._runs: OrderedDict[tuple[str, Scenario], Run] = OrderedDict()
+
+    def __contains__(self, key: tuple[str, Scenario]) -> bool:
+        return key in self._runs
+
+    def run(self, scenario: Scenario, controller: ControllerChoice, client: PhysicsClient) -> Run:
+        """The scenario's run with a controller from `controller`, simulated if not known."""
+        key = (controller.name, scenario)
+        if key in self._runs:
+            self._runs.move_to_end(key)
+            return self._runs[key]
+        run = run_scenario(scenario, controller.factory, client)
+        self.simulations += 1
+        self._runs[key] = run
+        if len(self._runs) > self.size:
+            self._runs.popitem(last=False)
+        return run
 
 
 def drive_pair(
@@ -51,32 +89,31 @@ def drive_pair(
     pair: Pair,
     obstacles: tuple[Obstacle, ...],
     seed: int,
-    make_controller: ControllerFactory,
-    client: PhysicsClient | None = None,
+    controller: ControllerChoice,
+    client: PhysicsClient,
+    cache: RunCache,
 ) -> PairDrive:
     """Drive both robots of the pair through a world holding `obstacles`, built in `client`
-    (see `run_scenario`), each with a controller from `make_controller`."""
+    (see `run_scenario`), each with a controller from `controller`."""
     return PairDrive(
-        baseline=drive(spec, pair.baseline.profile, obstacles, seed, make_controller, client),
-        candidate=drive(spec, pair.candidate.profile, obstacles, seed, make_controller, client),
+        baseline=cache.run(
+            scenario(spec, pair.baseline.profile, obstacles, seed), controller, client
+        ),
+        candidate=cache.run(
+            scenario(spec, pair.candidate.profile, obstacles, seed), controller, client
+        ),
     )
 
 
-def drive(
-    spec: PairsFile,
-    profile: LaserProfile,
-    obstacles: tuple[Obstacle, ...],
-    seed: int,
-    make_controller: ControllerFactory,
-    client: PhysicsClient | None = None,
-) -> Run:
-    """One robot of the pairs file, carrying `profile`, through a world holding `obstacles`,
-    driven by a controller from `make_controller`."""
+def scenario(
+    spec: PairsFile, profile: LaserProfile, obstacles: tuple[Obstacle, ...], seed: int
+) -> Scenario:
+    """One robot of the pairs file, carrying `profile`, on the file's route through a world
+    holding `obstacles`, with scan noise from `seed`."""
     world = spec.world
-    scenario = Scenario(
+    return Scenario(
         spec.robot, profile, obstacles, world.start, world.route, world.time_limit, seed
     )
-    return run_scenario(scenario, make_controller, client)
 
 
 def solver_path(spec: PairsFile, control: Run) -> NominalPath:
@@ -97,3 +134,16 @@ def drive_lines(drives: PairDrive, pair: Pair) -> list[str]:
             f"  {side:<10} {scanner.label}: {'passed' if run.passed else 'FAILED'}: {outcome}"
         )
     return lines
+
+
+def drive(
+    spec: PairsFile,
+    profile: LaserProfile,
+    obstacles: tuple[Obstacle, ...],
+    seed: int,
+    make_controller: ControllerFactory,
+    client: PhysicsClient | None = None,
+) -> Run:
+    """One robot of the pairs file, carrying `profile`, through a world holding `obstacles`,
+    driven by a controller from `make_controller`, outside any cache."""
+    return run_scenario(scenario(spec, profile, obstacles, seed), make_controller, client)

@@ -19,6 +19,26 @@ PAIRS_SUFFIXES = (".lasertest.yaml", ".lasertest.yml")
 
 
 @dataclass(frozen=True)
+class Budget:
+    """How hard each placement item searches around its witness."""
+
+    examples: int  # perturbations tried, the witness itself among them
+    shrink_simulations: int  # simulations spent making a failure smaller
+    explain: bool  # run Hypothesis's explain phase on a failure
+
+
+# ci fits the README's `pytest examples/` into 3 minutes with `-n 2` on 2 cores; triage replays a
+# stored failure and spends its budget on shrinking and explaining it.
+BUDGETS: dict[Profile, Budget] = {
+    "dev": Budget(examples=10, shrink_simulations=24, explain=False),
+    "ci": Budget(examples=8, shrink_simulations=16, explain=False),
+    "nightly": Budget(examples=100, shrink_simulations=200, explain=True),
+    "triage": Budget(examples=4, shrink_simulations=400, explain=True),
+}
+MAX_EXAMPLES = 10_000
+
+
+@dataclass(frozen=True)
 class LaserOptions:
     """The run's settings: everything needed to replay it."""
 
@@ -27,11 +47,22 @@ class LaserOptions:
     policy: Policy
     artifacts: Path | None
     pairs: tuple[Path, ...]  # pairs files named on the command line, absolute
+    examples: int | None = None  # overrides the profile's
+
+    @property
+    def budget(self) -> Budget:
+        """The profile's budget, with `--laser-examples` if given."""
+        budget = BUDGETS[self.profile]
+        if self.examples is None:
+            return budget
+        return Budget(self.examples, budget.shrink_simulations, budget.explain)
 
     def replay_options(self) -> str:
         """The options that reproduce this run."""
+        examples = f" --laser-examples={self.examples}" if self.examples is not None else ""
         return (
             f"--laser-seed={self.seed} --laser-profile={self.profile} --laser-policy={self.policy}"
+            f"{examples}"
         )
 
 
@@ -66,6 +97,20 @@ def parse_profile(text: str) -> Profile:
             f"--laser-profile={text!r} is not a budget profile: choose one of {', '.join(PROFILES)}"
         )
     return text
+
+
+def parse_examples(text: str) -> int:
+    """How many perturbations each placement item tries."""
+    try:
+        examples = int(text, 10)
+    except ValueError:
+        examples = 0
+    if not 1 <= examples <= MAX_EXAMPLES:
+        raise pytest.UsageError(
+            f"--laser-examples={text!r} is not a number of examples: give a whole number from 1 "
+            f"to {MAX_EXAMPLES} (the witness itself is the first)"
+        )
+    return examples
 
 
 def default_profile(environ: Mapping[str, str]) -> Profile:

@@ -9,21 +9,28 @@ session; planning is deterministic, so workers that plan the same pair find the 
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
+import numpy as np
 import pytest
 from _pytest._code.code import TerminalRepr, TracebackStyle
 
 from pytest_lasertest.artifacts.files import artifact_path, write_json
-from pytest_lasertest.drive_item import (
-    CONTROL,
-    DriveFailed,
-    control_drive,
-    drive_report,
-    physics_client,
+from pytest_lasertest.drive_item import CONTROL, control_drive, physics_client, run_cache
+from pytest_lasertest.drives import PairDrive, solver_path
+from pytest_lasertest.failure_report import (
+    MEANINGS,
+    beam_lines,
+    failure_properties,
+    margin_line,
+    oracle_lines,
+    search_line,
+    search_properties,
+    trial_lines,
 )
-from pytest_lasertest.drives import PairDrive, drive_pair, solver_path
+from pytest_lasertest.offsets import OffsetBox, offset_box
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.placement import (
     DIRECTIONS,
@@ -31,6 +38,7 @@ from pytest_lasertest.placement import (
     Direction,
     DirectionPlan,
     PairPlan,
+    Scene,
     Verification,
     Witness,
     verify,
@@ -39,6 +47,9 @@ from pytest_lasertest.plan_report import DETECTED_BY, describe_obstacle, witness
 from pytest_lasertest.spec import Pair, PairsFile
 from pytest_lasertest.spec.controller import ControllerChoice
 from pytest_lasertest.spec.errors import display_path
+from pytest_lasertest.trials import Setting, TrialFailed, TrialResult, Trials
+
+REPRO_SUFFIX = ".lasertest.yaml"
 
 # The session's plans, by (pairs file path, pair name): the items of a pair plan it once.
 PLANS_KEY = pytest.StashKey[dict[tuple[Path, str], PairPlan]]()
@@ -52,6 +63,25 @@ class VerificationFailed(Exception):
         self.witness = witness
         self.verification = verification
         self.artifact = artifact
+
+
+class PlacementFailed(Exception):
+    """The search found a perturbation of the witness that the policy fails, and shrank it."""
+
+    def __init__(
+        self,
+        witness: Witness,
+        result: TrialResult,
+        trials: Trials,
+        box: OffsetBox,
+        artifacts: tuple[Path, ...],
+    ) -> None:
+        super().__init__(witness.id)
+        self.witness = witness
+        self.result = result
+        self.trials = trials
+        self.box = box
+        self.artifacts = artifacts
 
 
 class PlacementItem(pytest.Item):
@@ -98,25 +128,63 @@ class PlacementItem(pytest.Item):
                 f"[{CONTROL}]",
                 _use_item_location=True,
             )
-        self._drive(witness)
+        self._search(plan.scene, witness)
 
-    def _drive(self, witness: Witness) -> None:
-        """Both robots through the world holding the witness; the policy judges the runs."""
-        obstacles = (witness.placement.obstacle,)
-        client = physics_client(self.config)
-        factory = self.controller.factory
-        drives = drive_pair(self.spec, self.pair, obstacles, self.options.seed, factory, client)
+    def _search(self, scene: Scene, witness: Witness) -> None:
+        """Perturb the witness with Hypothesis; a failure shrinks and fails the item."""
+        from pytest_lasertest.perturb import search
+
+        options, budget = self.options, self.options.budget
+        settings = self.spec.settings
+        sizes = (settings.min_obstacle_size, settings.max_obstacle_size)
+        box = offset_box(scene, witness.placement, sizes, np.random.default_rng(self._seed()))
+        trials = Trials(
+            self._setting(),
+            scene,
+            witness.placement,
+            sizes,
+            options.policy,
+            budget.shrink_simulations,
+        )
+        outcome = search(
+            box,
+            trials,
+            TrialFailed,
+            budget,
+            key=self.nodeid,
+            seed=self._seed(),
+            database=self._database(),
+        )
+        # Hypothesis's pytest plugin shows this under --hypothesis-show-statistics.
+        self.hypothesis_statistics = outcome.statistics
         self.user_properties += [
             ("lasertest.controller", self.controller.name),
-            *drives.properties(),
+            *search_properties(box, trials),
         ]
-        if drives.fails(self.options.policy):
-            raise DriveFailed(
-                f"the candidate fails where witness {witness.id} stands: the obstacle the "
-                f"{DETECTED_BY[self.direction]} reads and the other scanner misses",
-                drives,
-                [f"  obstacle   {describe_obstacle(witness.placement.obstacle)}"],
-            )
+        if outcome.failure is None:
+            return
+        result = cast(TrialFailed, outcome.failure).result
+        self.user_properties += failure_properties(result)
+        paths = self._write_failure(witness, result, trials, box)
+        raise PlacementFailed(witness, result, trials, box, paths)
+
+    def _setting(self) -> Setting:
+        return Setting(
+            self.spec,
+            self.pair,
+            self.controller,
+            self.options.seed,
+            physics_client(self.config),
+            run_cache(self.config),
+        )
+
+    def _seed(self) -> int:
+        """The search's seed: the run's, made the item's own by its node id."""
+        digest = hashlib.sha256(f"{self.options.seed}:{self.nodeid}".encode()).digest()
+        return int.from_bytes(digest[:4], "big")
+
+    def _database(self) -> Path:
+        return self.config.rootpath / ".hypothesis" / "examples"
 
     def _pair_plan(self) -> PairPlan:
         plans = self.config.stash.setdefault(PLANS_KEY, {})
@@ -155,14 +223,67 @@ class PlacementItem(pytest.Item):
         }
         return write_json(artifact_path(self.options.artifacts, self.nodeid, ".json"), evidence)
 
+    def _write_failure(
+        self, witness: Witness, result: TrialResult, trials: Trials, box: OffsetBox
+    ) -> tuple[Path, ...]:
+        """The failure's artifacts, if the run asked for them."""
+        options = self.options
+        if options.artifacts is None:
+            return ()
+        from pytest_lasertest.evidence import Failure, write_evidence
+
+        run_options: dict[str, object] = {
+            "seed": options.seed,
+            "profile": options.profile,
+            "policy": options.policy,
+        }
+        failure = Failure(
+            self.nodeid, self.spec, self.pair, witness, result, trials, box, run_options
+        )
+        return write_evidence(options.artifacts, failure)
+
     def repr_failure(
         self, excinfo: pytest.ExceptionInfo[BaseException], style: TracebackStyle | None = None
     ) -> str | TerminalRepr:
         if isinstance(excinfo.value, VerificationFailed):
             return self._rejection_report(excinfo.value)
-        if isinstance(excinfo.value, DriveFailed):
-            return drive_report(self, self.pair, self.controller, excinfo.value)
+        if isinstance(excinfo.value, PlacementFailed):
+            return self._failure_report(excinfo.value)
         return super().repr_failure(excinfo, style)
+
+    def _failure_report(self, failed: PlacementFailed) -> str:
+        pair, result, options = self.pair, failed.result, self.options
+        scene = self._pair_plan().scene
+        oracles = " and ".join(result.oracles())
+        lines = [
+            f"the candidate fails ({oracles}) near witness {failed.witness.id}: "
+            f"{MEANINGS[result.classification]}",
+            f"  pair       {pair.name} ({pair.location})",
+            f"  controller {self.controller.name} ({self.controller.source})",
+            *oracle_lines(result),
+            f"  witness    {describe_obstacle(failed.witness.placement.obstacle)}",
+            f"  minimal    {describe_obstacle(result.placement.obstacle)}",
+            f"  change     {result.offset.describe()} (the smallest the search found that fails)",
+            margin_line(result.verification),
+            *beam_lines(scene, result),
+            *trial_lines(result, pair),
+            search_line(failed.trials, failed.box),
+            f"  policy     {options.policy}",
+            f"  seed       {options.seed}",
+            *self._replay_lines(failed.artifacts),
+        ]
+        return "\n".join(lines)
+
+    def _replay_lines(self, artifacts: tuple[Path, ...]) -> list[str]:
+        rerun = f"pytest '{self.nodeid}' {self.options.replay_options()}"
+        repro = [path for path in artifacts if path.name.endswith(REPRO_SUFFIX)]
+        if not repro:
+            return [f"  replay     {rerun}  (replays this case first, from .hypothesis/)"]
+        return [
+            f"  replay     pytest '{display_path(repro[0])}'  (this case alone, pinned)",
+            f"  rerun      {rerun}  (replays this case first, from .hypothesis/)",
+            *(f"  artifact   {display_path(path)}" for path in artifacts),
+        ]
 
     def _rejection_report(self, rejected: VerificationFailed) -> str:
         pair, witness, verification = self.pair, rejected.witness, rejected.verification

@@ -18,6 +18,7 @@ from pytest_lasertest.options import (
     default_profile,
     fresh_seed,
     parse_artifacts,
+    parse_examples,
     parse_pairs,
     parse_policy,
     parse_profile,
@@ -59,6 +60,13 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         "variable is set, else dev).",
     )
     group.addoption(
+        "--laser-examples",
+        default=None,
+        metavar="N",
+        help="perturbations each placement item tries, the witness first (default: the "
+        "profile's: dev 10, ci 8, nightly 100, triage 4).",
+    )
+    group.addoption(
         "--laser-policy",
         default="candidate",
         metavar="NAME",
@@ -69,7 +77,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         "--laser-artifacts",
         default=None,
         metavar="DIR",
-        help="write the evidence of every failing item (JSON) below DIR.",
+        help="write the evidence of every failing item below DIR: a PNG, a pairs file that "
+        "replays it, a Gazebo world and a JSON file with every number.",
     )
     parser.addini(
         "laser_pairs",
@@ -91,7 +100,10 @@ def pytest_configure(config: pytest.Config) -> None:
     )
     config.addinivalue_line(
         "markers",
-        "placement: a pytest-lasertest item driving both robots past one obstacle placement",
+        "placement: a pytest-lasertest item searching around one obstacle placement",
+    )
+    config.addinivalue_line(
+        "markers", "pinned: a pytest-lasertest item driving both robots past a pinned obstacle"
     )
     here = config.invocation_params.dir
     named = parse_pairs(config.getoption("laser_pairs"), here, "--laser-pairs")
@@ -115,6 +127,7 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
         seed = workerinput[SEED_KEY] if SEED_KEY in workerinput else fresh_seed()
     profile = config.getoption("laser_profile")
     artifacts = config.getoption("laser_artifacts")
+    examples = config.getoption("laser_examples")
     return LaserOptions(
         seed=seed,
         profile=parse_profile(profile) if profile is not None else default_profile(os.environ),
@@ -125,6 +138,7 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
             else None
         ),
         pairs=pairs,
+        examples=parse_examples(examples) if examples is not None else None,
     )
 
 

@@ -9,15 +9,18 @@ from typing import Any
 import pytest
 
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions, is_pairs_file
+from pytest_lasertest.summary import Summary
 
 
 class LaserSession:
-    """Collects pairs files and keeps a broken one from stopping the rest of the run."""
+    """Collects pairs files, keeps a broken one from stopping the rest of the run, and sums up
+    what the placement items found."""
 
     def __init__(self, options: LaserOptions) -> None:
         self.options = options
         self.named_files = frozenset(options.pairs)
         self.broken_files = 0
+        self.summary = Summary()
 
     def pytest_report_header(self, config: pytest.Config) -> str:
         artifacts = f", artifacts in {self.options.artifacts}" if self.options.artifacts else ""
@@ -49,6 +52,18 @@ class LaserSession:
             return (yield)
         finally:
             session.testsfailed += self.broken_files
+
+    def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
+        if report.when == "call":
+            self.summary.add(report.nodeid, report.failed, report.user_properties)
+
+    def pytest_terminal_summary(self, terminalreporter: pytest.TerminalReporter) -> None:
+        artifacts = str(self.options.artifacts) if self.options.artifacts else None
+        lines = self.summary.lines(artifacts)
+        if lines:
+            terminalreporter.section("lasertest: placements searched, per pair")
+            for line in lines:
+                terminalreporter.write_line(line)
 
 
 class XdistHooks:

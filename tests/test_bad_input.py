@@ -281,6 +281,23 @@ CASES = {
         "max_obstacle_size 0.01 m is below min_obstacle_size 0.05 m",
         "make max_obstacle_size at least as large",
     ),
+    "an empty placements list": Case(
+        "    candidate: {model: hokuyo_ust_10lx}\n",
+        "    candidate: {model: hokuyo_ust_10lx}\n    placements: []\n",
+        23,
+        "pairs.same.placements",
+        "the placements list is empty",
+        "list at least one placement, or remove placements:",
+    ),
+    "a pinned obstacle of unknown shape": Case(
+        "    candidate: {model: hokuyo_ust_10lx}\n",
+        "    candidate: {model: hokuyo_ust_10lx}\n    placements:\n"
+        "      - {obstacle: {shape: cone, x: 5, y: 0, radius: 0.1, height: 1}, seed: 0}\n",
+        24,
+        "pairs.same.placements[0].obstacle.shape",
+        "unknown shape 'cone'",
+        "write one of: box, cylinder",
+    ),
     "no witnesses asked for": Case(
         "min_obstacle_size: 0.05",
         "min_obstacle_size: 0.05\n  witnesses: 0",

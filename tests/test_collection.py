@@ -297,23 +297,35 @@ def test_the_sparser_scanner_drives_into_its_witness_and_the_denser_one_stops_sh
     pytester: pytest.Pytester, paper_pairs: Path
 ) -> None:
     result = pytester.runpytest(
-        "-k", "size and misses-1", "--junitxml=report.xml", "--laser-seed=1"
+        "-k", "size and misses-1", "--junitxml=report.xml", "--laser-seed=1", "--laser-profile=ci"
     )
     result.assert_outcomes(passed=1, failed=1)
     result.stdout.fnmatch_lines(
         [
-            "the candidate fails where witness candidate-misses-1 stands: the obstacle the "
-            "baseline reads and the other scanner misses",
+            "the candidate fails (collision and goal) near witness candidate-misses-1: "
+            "pre-existing: the baseline fails here too",
             "  pair       size (paper.lasertest.yaml:40)",
             "  controller move_base (the default)",
-            "  obstacle   cylinder of radius 0.025 m at * m high",
+            "  oracle     collision: collided at t = * s (margin *-* mm)",
+            "  oracle     goal: goal not reached: * m away at best (margin -* mm)",
+            "  witness    cylinder of radius 0.025 m at * m high",
+            "  minimal    cylinder of radius 0.025 m at * m high",
+            "  change     none (the smallest the search found that fails)",
+            "  margins    detection * mm, concealment * mm, clearance * mm, obstruction * mm",
+            "  beams      at t = 1.14 s, robot at (0.51, 0.00, 0.00):",
+            "    baseline  beam 15 read it, 15 mm deep",
+            "    candidate no beam reads it; beam 7 comes nearest, 260 mm clear",
             # The paper's finding: the 32-beam robot stops short of the pole and never gets past.
             "  baseline   clearpath_lms1xx_gazebo: FAILED: no collision, least clearance * mm; "
             "stuck at t = * s: *; goal not reached: *",
             "  candidate  clearpath_lms1xx_gazebo: FAILED: collided at t = * s; *",
+            "  search     1 examples, 0 rejected (0%), 2 simulations; the first failure at "
+            "simulation 1, then 1 more to classify and shrink it; offsets up to x *",
             "  policy     candidate",
+            "  seed       1",
             "  replay     pytest 'paper.lasertest.yaml::size[[]candidate-misses-1[]]' "
-            "--laser-seed=1 *",
+            "--laser-seed=1 --laser-profile=ci --laser-policy=candidate  (replays this case "
+            "first, from .hypothesis/)",
         ]
     )
     cases = junit_cases(pytester.path / "report.xml")
@@ -324,10 +336,15 @@ def test_the_sparser_scanner_drives_into_its_witness_and_the_denser_one_stops_sh
         assert float(properties["lasertest.lead"]) >= 0.0
         assert properties["lasertest.late"] in {"True", "False"}
         assert re.fullmatch(r"(box|cylinder) .* m high", properties["lasertest.obstacle"])
-        assert properties["lasertest.baseline.collision"] == "pass"
+        assert properties["lasertest.candidate.collision"] in {"pass", "fail"}
+    dense = cases["paper.lasertest.yaml::size[baseline-misses-1]"].properties
+    assert int(dense["lasertest.examples"]) == 8
     sparse = cases["paper.lasertest.yaml::size[candidate-misses-1]"].properties
     assert sparse["lasertest.candidate.collision"] == "fail"
     assert float(sparse["lasertest.candidate.collision_margin"]) <= 0.0
+    assert sparse["lasertest.baseline.stuck"] == "fail"
+    assert sparse["lasertest.classification"] == "pre-existing"
+    assert sparse["lasertest.failed_oracles"] == "collision,goal"
 
 
 def test_placement_items_of_identical_scanners_are_skipped_because_they_cast_the_same_beams(
@@ -361,24 +378,44 @@ def test_not_placement_deselects_the_placement_items_and_not_coverage_the_covera
     ]
 
 
-def test_items_run_the_same_under_xdist_as_serially(
+def test_items_run_and_sum_up_the_same_under_xdist_as_serially(
     pytester: pytest.Pytester, paper_pairs: Path
 ) -> None:
-    selection = ("-k", "size", "--laser-seed=1")
-    pytester.runpytest(*selection, "--junitxml=serial.xml")
-    pytester.runpytest_subprocess(*selection, "--junitxml=xdist.xml", "-n", "2")
-    serial = junit_cases(pytester.path / "serial.xml")
-    distributed = junit_cases(pytester.path / "xdist.xml")
-    assert serial == distributed
-    assert {name: case.outcome for name, case in serial.items()} == {
+    selection = ("-k", "size", "--laser-seed=1", "--laser-profile=ci")
+    serial = pytester.runpytest(*selection, "--junitxml=serial.xml")
+    # Each run starts from an empty example database, or the second would replay the first's
+    # failures and try fewer examples.
+    shutil.rmtree(pytester.path / ".hypothesis")
+    distributed = pytester.runpytest_subprocess(*selection, "--junitxml=xdist.xml", "-n", "2")
+    assert junit_cases(pytester.path / "serial.xml") == junit_cases(pytester.path / "xdist.xml")
+    assert summary(serial.stdout.lines) == summary(distributed.stdout.lines)
+    assert summary(serial.stdout.lines)[1].split() == [
+        # witnesses, examples, rejected, failed, by oracle, regressions, pre-existing
+        *("paper.lasertest.yaml::size", "6", "37", "0", "(0%)", "3", "2", "1", "3", "1", "2"),
+    ]
+    assert {
+        name: case.outcome for name, case in junit_cases(pytester.path / "serial.xml").items()
+    } == {
         "paper.lasertest.yaml::size[coverage]": "failure",
         "paper.lasertest.yaml::size[no-obstacle]": "passed",
         **{f"paper.lasertest.yaml::size[baseline-misses-{index}]": "passed" for index in range(2)},
         "paper.lasertest.yaml::size[baseline-misses-2]": "failure",
         "paper.lasertest.yaml::size[candidate-misses-0]": "passed",
         "paper.lasertest.yaml::size[candidate-misses-1]": "failure",
-        "paper.lasertest.yaml::size[candidate-misses-2]": "passed",
+        # Found by perturbing the witness, which both robots pass: see the next test.
+        "paper.lasertest.yaml::size[candidate-misses-2]": "failure",
     }
+
+
+def summary(lines: list[str]) -> list[str]:
+    """The lasertest summary table of a run's output."""
+    start = next(index for index, line in enumerate(lines) if "lasertest: placements" in line)
+    table = []
+    for line in lines[start + 1 :]:
+        if line.startswith(("=", "FAILED", "ERROR")):
+            break
+        table.append(line)
+    return table
 
 
 def test_a_witness_the_ray_cast_rejects_fails_as_a_bug_in_the_solver(

@@ -1,5 +1,6 @@
 """Pairs files: a robot, a world, settings, constraints, the controller, and named
-baseline/candidate pairs."""
+baseline/candidate pairs, each with optional pinned placements (recorded failures kept as
+regression tests)."""
 
 from __future__ import annotations
 
@@ -16,6 +17,7 @@ from pytest_lasertest.spec.controller import ControllerChoice, read_controller
 from pytest_lasertest.spec.errors import Location, SpecError
 from pytest_lasertest.spec.navigation import read_navigation
 from pytest_lasertest.spec.node import SpecNode, read_root
+from pytest_lasertest.spec.placements import PinnedPlacement, read_placements
 from pytest_lasertest.spec.profile import PROFILE_KEYS, Scanner, build_profile, read_fields
 from pytest_lasertest.spec.robot import read_robot
 from pytest_lasertest.spec.world import World, read_world
@@ -23,6 +25,7 @@ from pytest_lasertest.spec.world import World, read_world
 SECTIONS = ("robot", "world", "settings", "constraints", "controller", "navigation", "pairs")
 REQUIRED_SECTIONS = ("robot", "world", "pairs")
 SETTINGS_KEYS = ("min_obstacle_size", "max_obstacle_size", "witnesses")
+PAIR_KEYS = ("baseline", "candidate", "placements")
 # Pair names become part of test ids (`file::NAME[...]`), which `::`, `[` and spaces would break.
 MAX_WITNESSES = 20
 PAIR_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*\Z")
@@ -39,12 +42,14 @@ class Settings:
 
 @dataclass(frozen=True)
 class Pair:
-    """A named hardware change: the baseline scanner and the candidate that replaces it."""
+    """A named hardware change: the baseline scanner, the candidate that replaces it, and the
+    placements the pair is always tested on besides the solver's."""
 
     name: str
     location: Location
     baseline: Scanner
     candidate: Scanner
+    placements: tuple[PinnedPlacement, ...] = ()  # from `placements:`, in the order written
 
 
 @dataclass(frozen=True)
@@ -134,7 +139,7 @@ def _read_pair(name: str, node: SpecNode, catalogue: Catalogue, mount: Pose3D) -
             f"the pair name {name!r} cannot be part of a test id",
             "use letters, digits, '_', '-' and '.' only, e.g. `blind_spot`",
         )
-    sides = node.mapping(("baseline", "candidate"), what="the two scanners of the pair")
+    sides = node.mapping(PAIR_KEYS, what="the two scanners of the pair, and its placements")
     for side in ("baseline", "candidate"):
         if side not in sides:
             raise node.missing(side, f"give the {side} scanner: a profile, or `model: NAME`")
@@ -143,6 +148,7 @@ def _read_pair(name: str, node: SpecNode, catalogue: Catalogue, mount: Pose3D) -
         node.location,
         _read_scanner(sides["baseline"], catalogue, mount),
         _read_scanner(sides["candidate"], catalogue, mount),
+        read_placements(sides["placements"]) if "placements" in sides else (),
     )
 
 

@@ -1,0 +1,269 @@
+"""The top-down picture of a failing item, drawn like the paper's RViz figures.
+
+Only matplotlib's object API on an Agg canvas: no pyplot, so no global figure state, and no
+display is needed. This module is imported only when a failure is written.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import IO, Any, TypeAlias
+
+import numpy as np
+import numpy.typing as npt
+from matplotlib.artist import Artist
+from matplotlib.axes import Axes
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.collections import LineCollection
+from matplotlib.colors import to_rgba
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.offsetbox import AnchoredOffsetbox, AuxTransformBox, TextArea, VPacker
+from matplotlib.patches import Circle, Patch, Polygon, Rectangle
+from matplotlib.ticker import MultipleLocator
+
+from pytest_lasertest.artifacts.files import write_atomically
+from pytest_lasertest.geometry import Box, FloatArray, Obstacle
+
+BoolArray = npt.NDArray[np.bool_]
+Pose: TypeAlias = tuple[float, float, float]  # m, m, rad
+
+BASELINE_COLOUR = "#1f77b4"  # blue
+CANDIDATE_COLOUR = "#d62728"  # red
+OBSTACLE_COLOUR = "#4d4d4d"  # dark grey
+GOAL_COLOUR = "#2ca02c"  # green
+GROUND_COLOUR = "#f2f2f2"  # light grey
+SIZE = (10.0, 7.0)  # inches; 1000 x 700 pixels at DPI
+DPI = 100  # pixels per inch
+PADDING = 1.0  # m, around everything the view must hold
+
+
+@dataclass(frozen=True)
+class BeamFan:
+    """One scanner's beams at one instant: where each starts and ends, which read the obstacle."""
+
+    label: str  # e.g. "baseline sick_lms111: 32 beams, 10 m"
+    origins: FloatArray  # (N, 2) m, world frame
+    ends: FloatArray  # (N, 2) m, where each beam stops: its hit on the obstacle, or range_max
+    hits: BoolArray  # (N,) whether the beam reads the obstacle
+
+    def __post_init__(self) -> None:
+        shapes = (np.shape(self.origins), np.shape(self.ends), np.shape(self.hits))
+        count = shapes[2][0] if len(shapes[2]) == 1 else -1
+        if shapes != ((count, 2), (count, 2), (count,)):
+            raise ValueError(
+                f"a beam fan needs origins (N, 2), ends (N, 2) and hits (N,), not {shapes}"
+            )
+
+
+@dataclass(frozen=True)
+class FailureFigure:
+    """Everything the picture of one failure shows, in the world frame."""
+
+    title: str  # one line, e.g. the item id and the oracle
+    obstacle: Obstacle
+    baseline_path: FloatArray  # (T, 2) m
+    candidate_path: FloatArray  # (T, 2) m
+    footprint: FloatArray  # (V, 2) m, robot footprint polygon in the base frame
+    candidate_pose: Pose  # m, m, rad: the candidate at its failure
+    baseline_pose: Pose  # m, m, rad: the baseline at the same instant
+    beams: tuple[BeamFan, BeamFan]  # baseline's, candidate's, both at that instant
+    failure: tuple[float, float]  # m: the collision point or where it got stuck
+    failure_label: str  # e.g. "collided at t = 11.82 s" / "stuck at t = 21.22 s"
+    goal: tuple[float, float]  # m
+    start: tuple[float, float]  # m
+
+
+def draw_failure(figure: FailureFigure, path: Path) -> Path:
+    """Write the figure as a PNG at `path`, atomically; returns `path`."""
+    picture = build_figure(figure)
+
+    def write(handle: IO[bytes]) -> None:
+        picture.savefig(handle, format="png", dpi=DPI)
+
+    return write_atomically(path, write)
+
+
+def build_figure(figure: FailureFigure) -> Figure:
+    """The picture as a matplotlib Figure on its own Agg canvas, not yet written anywhere."""
+    picture = Figure(figsize=SIZE, dpi=DPI, layout="constrained")
+    # The canvas attaches itself: the figure renders with Agg whatever backend pyplot may use.
+    FigureCanvasAgg(picture)
+    axes = picture.add_subplot()
+    low, high, step = _frame(axes, figure)
+    obstacle = _draw_obstacle(axes, figure.obstacle)
+    beams, paths, footprints = [], [], []
+    for (name, colour, path, pose), fan in zip(_robots(figure), figure.beams, strict=True):
+        beams.append(_draw_beams(axes, fan, colour))
+        paths.extend(
+            axes.plot(path[:, 0], path[:, 1], color=colour, lw=2.0, label=f"{name} path", zorder=4)
+        )
+        footprints.append(_draw_robot(axes, figure.footprint, pose, colour, f"{name} footprint"))
+    start, goal, failure = _draw_markers(axes, figure)
+    _add_scale_bar(axes, step)
+    # Filled column by column: the two long beam labels share the first, so three columns fit.
+    handles: list[Artist] = [*beams, obstacle, start, *paths, *footprints, goal, failure]
+    # Below the axes, so it never hides the obstacle or a path and leaves the view its width.
+    picture.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8)
+    picture.suptitle(figure.title, fontsize=10)
+    _fit_view(picture, axes, low, high)
+    return picture
+
+
+def _robots(figure: FailureFigure) -> tuple[tuple[str, str, FloatArray, Pose], ...]:
+    """Name, colour, path and pose at the failure of the baseline and the candidate."""
+    return (
+        ("baseline", BASELINE_COLOUR, figure.baseline_path, figure.baseline_pose),
+        ("candidate", CANDIDATE_COLOUR, figure.candidate_path, figure.candidate_pose),
+    )
+
+
+def _frame(axes: Axes, figure: FailureFigure) -> tuple[FloatArray, FloatArray, float]:
+    """Set the ground, the grid and a first view; returns the view's lower left and upper right
+    corners (m), the box round the paths, the obstacle and the markers, padded, and the grid
+    step (m)."""
+    points = np.vstack(
+        [
+            figure.baseline_path,
+            figure.candidate_path,
+            _outline(figure.obstacle),
+            [figure.goal, figure.start, figure.failure],
+        ]
+    )
+    low, high = points.min(axis=0) - PADDING, points.max(axis=0) + PADDING
+    axes.set_xlim(low[0], high[0])
+    axes.set_ylim(low[1], high[1])
+    step = _nice_length(float(max(high - low)))
+    for axis in (axes.xaxis, axes.yaxis):
+        axis.set_major_locator(MultipleLocator(step))
+    axes.set_facecolor(GROUND_COLOUR)
+    axes.set_axisbelow(True)
+    axes.grid(True, color="#c8c8c8", linewidth=0.6)
+    axes.set_xlabel("x (m)")
+    axes.set_ylabel("y (m)")
+    return low, high, step
+
+
+def _fit_view(picture: Figure, axes: Axes, low: FloatArray, high: FloatArray) -> None:
+    """Lay the figure out and freeze it, with the view widened about its centre to the shape of
+    the axes, so that a metre is as long across as up."""
+    # Matplotlib's own equal aspect either shrinks the axes or, re-applied on every layout
+    # pass, widens the view more than it needs; fixed limits fitted to the laid out axes do
+    # neither. Twice, as the first fit's tick labels can be wider than the first layout's.
+    engine = picture.get_layout_engine()
+    for _ in range(2):
+        if engine is not None:
+            engine.execute(picture)
+        width, height = axes.get_window_extent().size  # pixels
+        centre, half = (low + high) / 2.0, (high - low) / 2.0
+        per_pixel = max(half[0] / width, half[1] / height)  # m
+        axes.set_xlim(centre[0] - per_pixel * width, centre[0] + per_pixel * width)
+        axes.set_ylim(centre[1] - per_pixel * height, centre[1] + per_pixel * height)
+    picture.set_layout_engine("none")
+
+
+def _nice_length(span: float) -> float:
+    """The longest of 1, 2 or 5 times a power of ten that fits at least five times into span."""
+    target = span / 5.0
+    power = 10.0 ** math.floor(math.log10(target))
+    return max(factor * power for factor in (1.0, 2.0, 5.0) if factor * power <= target)
+
+
+def _outline(obstacle: Obstacle) -> FloatArray:
+    """Points whose bounding box is the obstacle's footprint's, shape (4, 2) m."""
+    if isinstance(obstacle, Box):
+        half_length, half_width = obstacle.length / 2.0, obstacle.width / 2.0
+        corners = np.array(
+            [
+                [half_length, half_width],
+                [-half_length, half_width],
+                [-half_length, -half_width],
+                [half_length, -half_width],
+            ]
+        )
+        return _placed(corners, (obstacle.x, obstacle.y, obstacle.yaw))
+    offsets = obstacle.radius * np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])
+    outline: FloatArray = offsets + np.array([obstacle.x, obstacle.y])
+    return outline
+
+
+def _placed(points: FloatArray, pose: Pose) -> FloatArray:
+    """Points given in a frame at `pose`, shape (V, 2), expressed in the world frame."""
+    x, y, yaw = pose
+    cos, sin = math.cos(yaw), math.sin(yaw)
+    # The transpose of Rz(yaw), as the points are row vectors.
+    rotation = np.array([[cos, sin], [-sin, cos]])
+    placed: FloatArray = np.asarray(points, dtype=np.float64) @ rotation + np.array([x, y])
+    return placed
+
+
+def _draw_obstacle(axes: Axes, obstacle: Obstacle) -> Patch:
+    """The obstacle's footprint, filled: a box turned by its yaw or a circle."""
+    style = {"facecolor": OBSTACLE_COLOUR, "edgecolor": "black", "label": "obstacle", "zorder": 2}
+    if isinstance(obstacle, Box):
+        return axes.add_patch(Polygon(_outline(obstacle), closed=True, **style))
+    return axes.add_patch(Circle((obstacle.x, obstacle.y), obstacle.radius, **style))
+
+
+def _draw_beams(axes: Axes, fan: BeamFan, colour: str) -> LineCollection:
+    """Each beam as a line from its origin to its end, bold if it reads the obstacle; returns the
+    bold ones."""
+    segments = np.stack([fan.origins, fan.ends], axis=1)
+    misses = LineCollection(list(segments[~fan.hits]), colors=colour, linewidths=0.5, alpha=0.3)
+    hits = LineCollection(list(segments[fan.hits]), colors=colour, linewidths=1.4, alpha=0.9)
+    hits.set_label(f"{fan.label} ({int(np.count_nonzero(fan.hits))} on the obstacle)")
+    for beams in (misses, hits):
+        beams.set_zorder(3)
+        # Beams run to range_max: they must not widen the view.
+        axes.add_collection(beams, autolim=False)
+    return hits
+
+
+def _draw_robot(axes: Axes, footprint: FloatArray, pose: Pose, colour: str, label: str) -> Patch:
+    """A robot's footprint at `pose`, with a line from its centre showing which way it faces."""
+    outline = _placed(footprint, pose)
+    patch = axes.add_patch(
+        Polygon(outline, facecolor=to_rgba(colour, 0.35), edgecolor=colour, label=label, zorder=5)
+    )
+    x, y, yaw = pose
+    reach = float(np.max(np.hypot(footprint[:, 0], footprint[:, 1])))
+    axes.plot(
+        [x, x + reach * math.cos(yaw)], [y, y + reach * math.sin(yaw)], color=colour, zorder=5
+    )
+    return patch
+
+
+def _draw_markers(axes: Axes, figure: FailureFigure) -> list[Line2D]:
+    """Start, goal, and the failure point with its label; returns their markers in that order."""
+    marks = (
+        (figure.start, "o", "white", "start"),
+        (figure.goal, "*", GOAL_COLOUR, "goal"),
+        (figure.failure, "X", "black", figure.failure_label),
+    )
+    style: dict[str, Any] = {"markersize": 12, "markeredgecolor": "black", "linestyle": "none"}
+    markers = [
+        axes.plot([x], [y], marker=marker, mfc=colour, label=label, zorder=6, **style)[0]
+        for (x, y), marker, colour, label in marks
+    ]
+    axes.annotate(
+        figure.failure_label,
+        figure.failure,
+        xytext=(10, 10),
+        textcoords="offset points",
+        fontsize=9,
+        bbox={"boxstyle": "round", "facecolor": "white", "alpha": 0.9},
+        zorder=7,
+    )
+    return markers
+
+
+def _add_scale_bar(axes: Axes, length: float) -> None:
+    """A bar `length` metres long in the lower right corner, labelled."""
+    # The box scales its child by the data transform, so the bar stays true as the view changes.
+    bar = AuxTransformBox(axes.transData)
+    bar.add_artist(Rectangle((0.0, 0.0), length, 0.0, edgecolor="black", linewidth=2.0))
+    label = TextArea(f"{length:g} m", textprops={"fontsize": 9})
+    packed = VPacker(children=[bar, label], align="center", pad=0.0, sep=4.0)
+    axes.add_artist(AnchoredOffsetbox(loc="lower right", child=packed, pad=0.4, borderpad=0.6))

@@ -1,0 +1,154 @@
+"""The YAML repro of a failing item: a pairs file with one pair and its one failing placement.
+
+It is the user's own pairs file cut down to the failing case: the robot, world, controller and
+navigation sections and the pair's two scanners are copied as written (so `model:` overrides read
+as the user wrote them), and the placement is pinned. Committed, it replays the failure as a
+regression test on every run.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+
+import yaml
+
+from pytest_lasertest.spec.bundled import bundled_robots
+from pytest_lasertest.spec.errors import Location, SpecError, display_path
+from pytest_lasertest.spec.pairs import Pair, PairsFile
+from pytest_lasertest.spec.placements import PinnedPlacement, obstacle_fields
+from pytest_lasertest.spec.yamlfile import read_text
+
+# Settings and constraints only steer the solver, which a pinned placement never asks.
+COPIED_SECTIONS = ("robot", "world", "controller", "navigation")
+
+
+class _ReproDumper(yaml.SafeDumper):
+    """SafeDumper writing shared values out in full (`&id001` anchors read badly in a repro),
+    and list items indented."""
+
+    def ignore_aliases(self, data: object) -> bool:
+        return True
+
+    def increase_indent(self, flow: bool = False, indentless: bool = False) -> None:
+        # List items indented below their key, as the examples write them.
+        super().increase_indent(flow, False)
+
+
+def repro_yaml(
+    spec: PairsFile, pair: Pair, pinned: PinnedPlacement, destination: Path, header: Sequence[str]
+) -> str:
+    """A pairs file holding one pair with one pinned placement: the failing case, replayable on
+    its own from `destination`."""
+    written = _written(spec)
+    document = {key: written[key] for key in COPIED_SECTIONS if key in written}
+    document["robot"] = _robot_from(str(written["robot"]), spec.path, destination)
+    document["pairs"] = {pair.name: _pair_mapping(written, pair, pinned)}
+    notes = [*header, *_controller_notes(written.get("controller"), spec.path, destination)]
+    body = yaml.dump(
+        document,
+        Dumper=_ReproDumper,
+        sort_keys=False,
+        default_flow_style=None,  # innermost mappings on one line, as pairs files are written
+        allow_unicode=True,
+        width=100,
+    )
+    return _comments(notes) + body
+
+
+def write_repro(
+    path: Path, spec: PairsFile, pair: Pair, pinned: PinnedPlacement, header: Sequence[str]
+) -> Path:
+    """Write `repro_yaml` at `path` atomically (temporary file in the same directory, then
+    os.replace; no temporary left on error)."""
+    text = repro_yaml(spec, pair, pinned, path, header)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    # The leading dot keeps the half-written file out of `*.lasertest.yaml` collection.
+    descriptor, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
+    try:
+        with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
+            handle.write(text)
+        os.replace(temporary, path)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(temporary)
+        raise
+    return path
+
+
+def _written(spec: PairsFile) -> dict[str, object]:
+    """The pairs file's sections as the user wrote them (anchors and merge keys resolved)."""
+    written = yaml.safe_load(read_text(spec.path))
+    if not isinstance(written, dict):
+        raise SpecError(
+            Location(spec.path, 1),
+            "",
+            "the pairs file changed since it was read and is no longer a mapping",
+            "restore it, or run again",
+        )
+    return written
+
+
+def _pair_mapping(
+    written: dict[str, object], pair: Pair, pinned: PinnedPlacement
+) -> dict[str, object]:
+    """The pair's scanners as written, and `pinned` as its one placement."""
+    pairs = written.get("pairs")
+    sides = pairs.get(pair.name) if isinstance(pairs, dict) else None
+    if not isinstance(sides, dict):
+        raise SpecError(
+            pair.location,
+            f"pairs.{pair.name}",
+            "the pair is gone from the file since it was read",
+            "restore it, or run again",
+        )
+    placement: dict[str, object] = {"obstacle": obstacle_fields(pinned.obstacle)}
+    placement["seed"] = int(pinned.seed)
+    if pinned.direction is not None:
+        placement["direction"] = pinned.direction
+    return {
+        "baseline": sides["baseline"],
+        "candidate": sides["candidate"],
+        "placements": [placement],
+    }
+
+
+def _robot_from(name: str, original: Path, destination: Path) -> str:
+    """`robot:` as it resolves from the destination's directory: a bundled name or an absolute
+    path as written, a relative path rewritten relative to where the repro goes."""
+    if name in bundled_robots() or Path(name).is_absolute():
+        return name
+    target = original.parent.resolve() / name
+    relative = Path(os.path.relpath(target, destination.parent.resolve())).as_posix()
+    # A relative path that reads as a bundled name would load the bundled robot instead.
+    return f"./{relative}" if relative in bundled_robots() else relative
+
+
+def _controller_notes(controller: object, original: Path, destination: Path) -> list[str]:
+    """A note when `controller:` names a module next to the original pairs file, which the
+    repro, written elsewhere, finds only if it is importable: controller.py has no path form."""
+    if not isinstance(controller, str) or ":" not in controller:
+        return []
+    here = original.parent.resolve()
+    if here == destination.parent.resolve():
+        return []
+    module = controller.split(":", 1)[0].strip()
+    base = here.joinpath(*module.split("."))
+    if not (base.with_suffix(".py").is_file() or (base / "__init__.py").is_file()):
+        return []
+    return [
+        f"controller: {controller} is the module {module!r} next to {display_path(original)};"
+        f" to replay this file, make it importable (copy it next to this file, or put"
+        f" {display_path(here)} on sys.path)"
+    ]
+
+
+def _comments(lines: Sequence[str]) -> str:
+    """`lines` as YAML comments, then a blank line; nothing when there are none."""
+    if not lines:
+        return ""
+    split = [part for line in lines for part in line.splitlines() or [""]]
+    return "".join(f"# {part}".rstrip() + "\n" for part in split) + "\n"

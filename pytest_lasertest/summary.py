@@ -1,0 +1,98 @@
+"""The run's summary table: per pair, what its placement items searched and found.
+
+It is made from the reports alone (their outcome and `user_properties`), which pytest-xdist
+carries from the workers to the controller, so a distributed run sums up as a serial one.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+
+ORACLES = ("collision", "stuck", "goal")
+COLUMNS = (
+    "witnesses",
+    "examples",
+    "rejected",
+    "failed",
+    *ORACLES,
+    "regressions",
+    "pre-existing",
+)
+
+
+@dataclass
+class PairTally:
+    """The searches of one pair's placement items, summed."""
+
+    witnesses: int = 0  # items that searched around a witness
+    examples: int = 0
+    rejected: int = 0
+    failed: int = 0  # items the policy failed
+    oracles: dict[str, int] = field(default_factory=lambda: dict.fromkeys(ORACLES, 0))
+    classes: dict[str, int] = field(default_factory=dict)
+
+    def add(self, failed: bool, properties: Mapping[str, object]) -> None:
+        """Count one placement item's report."""
+        self.witnesses += 1
+        self.examples += _whole(properties.get("lasertest.examples"))
+        self.rejected += _whole(properties.get("lasertest.rejected"))
+        if not failed:
+            return
+        self.failed += 1
+        for oracle in str(properties.get("lasertest.failed_oracles", "")).split(","):
+            if oracle in self.oracles:
+                self.oracles[oracle] += 1
+        classification = str(properties.get("lasertest.classification", ""))
+        self.classes[classification] = self.classes.get(classification, 0) + 1
+
+    def row(self) -> tuple[str, ...]:
+        drawn = self.examples + self.rejected
+        share = f" ({self.rejected / drawn:.0%})" if drawn else ""
+        return (
+            str(self.witnesses),
+            str(self.examples),
+            f"{self.rejected}{share}",
+            str(self.failed),
+            *(str(self.oracles[oracle]) for oracle in ORACLES),
+            str(self.classes.get("regression", 0)),
+            str(self.classes.get("pre-existing", 0)),
+        )
+
+
+@dataclass
+class Summary:
+    """Every pair's tally, keyed by `pairs file::pair`."""
+
+    pairs: dict[str, PairTally] = field(default_factory=dict)
+
+    def add(self, nodeid: str, failed: bool, properties: Iterable[tuple[str, object]]) -> None:
+        """Count a placement item's call report; other reports leave no trace."""
+        named = dict(properties)
+        if "lasertest.examples" not in named:
+            return
+        pair = nodeid.rpartition("[")[0]
+        self.pairs.setdefault(pair, PairTally()).add(failed, named)
+
+    def lines(self, artifacts: str | None) -> list[str]:
+        """The table, one row per pair in node-id order, and where the artifacts went."""
+        if not self.pairs:
+            return []
+        names = sorted(self.pairs)
+        rows = [("pair", *COLUMNS)] + [(name, *self.pairs[name].row()) for name in names]
+        widths = [max(len(row[column]) for row in rows) for column in range(len(rows[0]))]
+        lines = [
+            "  ".join(
+                cell.ljust(width) if column == 0 else cell.rjust(width)
+                for column, (cell, width) in enumerate(zip(row, widths, strict=True))
+            )
+            for row in rows
+        ]
+        failed = sum(tally.failed for tally in self.pairs.values())
+        if artifacts is not None and failed:
+            lines.append(f"artifacts of the {failed} failing placement items: {artifacts}")
+        return lines
+
+
+def _whole(value: object) -> int:
+    return value if isinstance(value, int) else 0

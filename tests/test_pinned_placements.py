@@ -1,0 +1,698 @@
+"""Pinned placements (`placements:` in a pair) and the YAML repro that writes one back."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import sys
+import uuid
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from pytest_lasertest.artifacts.repro import repro_yaml, write_repro
+from pytest_lasertest.geometry import Box, Cylinder, Obstacle
+from pytest_lasertest.spec import Pair, PairsFile, SpecError, load_pairs_file
+from pytest_lasertest.spec.placements import PinnedPlacement, obstacle_fields
+from tests.conftest import EXAMPLES, VALID_PAIRS
+from tests.test_bad_input import MY_ROBOT, Case, assert_one_clean_error
+
+# Line numbers matter: the cases below break one line of it.
+PINNED = """\
+robot: husky
+world:
+  start: {x: 0.0, y: 0.0, yaw: 0.0}
+  goal: {x: 10.0, y: 0.0}
+  time_limit: 60.0
+pairs:
+  size:
+    baseline: {model: clearpath_lms1xx_gazebo, samples: 32, range: {max: 10.0}}
+    candidate: {model: clearpath_lms1xx_gazebo, samples: 16, range: {max: 10.0}}
+    placements:
+      - obstacle: {shape: cylinder, x: 5.943, y: 0.249, radius: 0.025, height: 0.323}   # m
+        seed: 1234
+        direction: candidate-misses
+      - obstacle: {shape: box, x: 6.7, y: 0.0, length: 0.657, width: 0.657, height: 0.328}
+        seed: 7
+      - obstacle:
+          shape: box
+          x: 4.0
+          y: -0.5
+          yaw: 0.3
+          length: 0.2
+          width: 0.1
+          height: 1.0
+        seed: 4294967295
+        direction: baseline-misses
+"""
+SECOND_BOX = (
+    "      - obstacle: {shape: box, x: 6.7, y: 0.0, length: 0.657, width: 0.657, height: 0.328}"
+)
+FIRST = "pairs.size.placements[0]"
+SECOND = "pairs.size.placements[1]"
+THIRD = "pairs.size.placements[2]"
+POSITIVE_FIX = "write a positive {} in m"
+
+CASES = {
+    "a misspelt placement key": Case(
+        "seed: 7", "sed: 7", 15, f"{SECOND}.sed", "unknown key 'sed'", "did you mean 'seed'?"
+    ),
+    "a misspelt placements key": Case(
+        "    placements:",
+        "    placement:",
+        10,
+        "pairs.size.placement",
+        "unknown key 'placement'",
+        "did you mean 'placements'?",
+    ),
+    "no seed": Case(
+        "        seed: 7\n",
+        "",
+        14,
+        f"{SECOND}.seed",
+        "seed is missing",
+        "write the scan-noise seed the case was recorded with",
+    ),
+    "no obstacle": Case(
+        f"{SECOND_BOX}\n        seed: 7",
+        "      - seed: 7",
+        14,
+        f"{SECOND}.obstacle",
+        "obstacle is missing",
+        "write the obstacle to place, e.g. `obstacle: {shape: cylinder",
+    ),
+    "a placement that is not a mapping": Case(
+        f"{SECOND_BOX}\n        seed: 7",
+        "      - [6.7, 0.0]",
+        14,
+        SECOND,
+        "expected a mapping of placement fields (obstacle, seed, direction), got a list",
+        "write `key: value` pairs",
+    ),
+    "an obstacle that is a list": Case(
+        SECOND_BOX,
+        "      - obstacle: [box, 6.7, 0.0]",
+        14,
+        f"{SECOND}.obstacle",
+        "expected a mapping of obstacle fields, got a list",
+        "write `key: value` pairs",
+    ),
+    "no shape": Case(
+        "{shape: box, x: 6.7",
+        "{x: 6.7",
+        14,
+        f"{SECOND}.obstacle.shape",
+        "shape is missing",
+        "write `shape: box` or `shape: cylinder`",
+    ),
+    "a misspelt shape": Case(
+        "shape: cylinder",
+        "shape: cylindre",
+        11,
+        f"{FIRST}.obstacle.shape",
+        "unknown shape 'cylindre'",
+        "did you mean 'cylinder'? write one of: box, cylinder",
+    ),
+    "a shape that is not modelled": Case(
+        "shape: cylinder",
+        "shape: cone",
+        11,
+        f"{FIRST}.obstacle.shape",
+        "unknown shape 'cone'",
+        "write one of: box, cylinder",
+    ),
+    "a shape that is a number": Case(
+        "shape: cylinder",
+        "shape: 3",
+        11,
+        f"{FIRST}.obstacle.shape",
+        "expected a shape (box, cylinder), got 3",
+        "write one of: box, cylinder",
+    ),
+    "a yaw on a cylinder": Case(
+        "{shape: cylinder, x: 5.943,",
+        "{shape: cylinder, yaw: 0.1, x: 5.943,",
+        11,
+        f"{FIRST}.obstacle.yaw",
+        "unknown key 'yaw'",
+        "a cylinder looks the same at every yaw; remove yaw",
+    ),
+    "a length on a cylinder": Case(
+        "radius: 0.025",
+        "length: 0.025",
+        11,
+        f"{FIRST}.obstacle.length",
+        "unknown key 'length'",
+        "`length` belongs to a box; write radius, or shape: box",
+    ),
+    "a radius on a box": Case(
+        "length: 0.657, width: 0.657,",
+        "radius: 0.657,",
+        14,
+        f"{SECOND}.obstacle.radius",
+        "unknown key 'radius'",
+        "`radius` belongs to a cylinder; write length and width, or shape: cylinder",
+    ),
+    "a misspelt box field": Case(
+        "          width: 0.1",
+        "          widht: 0.1",
+        22,
+        f"{THIRD}.obstacle.widht",
+        "unknown key 'widht'",
+        "did you mean 'width'?",
+    ),
+    "a box without its width": Case(
+        "          width: 0.1\n",
+        "",
+        16,
+        f"{THIRD}.obstacle.width",
+        "width is missing",
+        "write the box's width in m",
+    ),
+    "a cylinder without its radius": Case(
+        "radius: 0.025, ",
+        "",
+        11,
+        f"{FIRST}.obstacle.radius",
+        "radius is missing",
+        "write the cylinder's radius in m",
+    ),
+    "a cylinder without its centre": Case(
+        "x: 5.943, ", "", 11, f"{FIRST}.obstacle.x", "x is missing", "write the cylinder's x in m"
+    ),
+    "a zero radius": Case(
+        "radius: 0.025",
+        "radius: 0",
+        11,
+        f"{FIRST}.obstacle.radius",
+        "a radius of 0 m is no obstacle",
+        POSITIVE_FIX.format("radius"),
+    ),
+    "a negative height": Case(
+        "          height: 1.0",
+        "          height: -1.0",
+        23,
+        f"{THIRD}.obstacle.height",
+        "a height of -1.0 m is no obstacle",
+        POSITIVE_FIX.format("height"),
+    ),
+    "a negative length": Case(
+        "          length: 0.2",
+        "          length: -0.2",
+        21,
+        f"{THIRD}.obstacle.length",
+        "a length of -0.2 m is no obstacle",
+        POSITIVE_FIX.format("length"),
+    ),
+    "a zero width": Case(
+        "width: 0.657,",
+        "width: 0.0,",
+        14,
+        f"{SECOND}.obstacle.width",
+        "a width of 0.0 m is no obstacle",
+        POSITIVE_FIX.format("width"),
+    ),
+    "text where a coordinate belongs": Case(
+        "          x: 4.0",
+        "          x: four",
+        18,
+        f"{THIRD}.obstacle.x",
+        "expected a number in m, got the text 'four'",
+        "write a number in m",
+    ),
+    "a yaw in degrees": Case(
+        "yaw: 0.3",
+        "yaw: 30deg",
+        20,
+        f"{THIRD}.obstacle.yaw",
+        "expected a number in rad, got the text '30deg'",
+        "write a number in rad",
+    ),
+    "a coordinate that is not finite": Case(
+        "y: -0.5",
+        "y: .nan",
+        19,
+        f"{THIRD}.obstacle.y",
+        "nan is not a finite number",
+        "write a finite number in m",
+    ),
+    "a negative seed": Case(
+        "seed: 7",
+        "seed: -1",
+        15,
+        f"{SECOND}.seed",
+        "the seed -1 is not a 32-bit seed",
+        "write a whole number from 0 to 4294967295",
+    ),
+    "a seed beyond 32 bits": Case(
+        "seed: 4294967295",
+        "seed: 4294967296",
+        24,
+        f"{THIRD}.seed",
+        "the seed 4294967296 is not a 32-bit seed",
+        "write a whole number from 0 to 4294967295",
+    ),
+    "a fraction of a seed": Case(
+        "seed: 1234",
+        "seed: 12.5",
+        12,
+        f"{FIRST}.seed",
+        "expected a whole number, got 12.5",
+        "write an integer",
+    ),
+    "an unknown direction": Case(
+        "direction: candidate-misses",
+        "direction: candidate",
+        13,
+        f"{FIRST}.direction",
+        "unknown direction 'candidate'",
+        "write candidate-misses or baseline-misses, or remove direction",
+    ),
+    "a direction that is a number": Case(
+        "direction: baseline-misses",
+        "direction: 1",
+        25,
+        f"{THIRD}.direction",
+        "expected a direction (candidate-misses or baseline-misses), got 1",
+        "write candidate-misses or baseline-misses",
+    ),
+}
+PLACEMENTS_HEAD = PINNED.split("    placements:")[0]
+# Ways to write `placements:` that hold no placement at all.
+EMPTY_CASES = {
+    "an empty list": (
+        "    placements: []\n",
+        "pairs.size.placements",
+        "the placements list is empty",
+        "list at least one placement, or remove placements:",
+    ),
+    "nothing": (
+        "    placements:\n",
+        "pairs.size.placements",
+        "expected a list of placements",
+        "write one `- item` per line",
+    ),
+    "a single placement without its dash": (
+        "    placements:\n      obstacle: {shape: box, x: 1, y: 0, length: 1, width: 1}\n",
+        "pairs.size.placements",
+        "expected a list of placements, each `- obstacle: {...}` with its `seed:`, got a mapping",
+        "write one `- item` per line",
+    ),
+}
+# A failure the solver recorded: numpy floats with no short decimal form.
+RECORDED = Cylinder(np.float64(5.943000000000001), 0.1 + 0.2, 1.0 / 30.0, 0.323)  # m
+HEADER = ("lasertest repro of gate.lasertest.yaml::size[candidate-misses-0]", "replay: pytest X")
+
+
+def write(directory: Path, text: str, name: str = "gate.lasertest.yaml") -> Path:
+    directory.mkdir(parents=True, exist_ok=True)
+    path = directory / name
+    path.write_text(text)
+    return path
+
+
+def pair_named(spec: PairsFile, name: str) -> Pair:
+    return next(pair for pair in spec.pairs if pair.name == name)
+
+
+def pinned_for(pair: Pair, obstacle: Obstacle = RECORDED, seed: int = 1234) -> PinnedPlacement:
+    return PinnedPlacement(obstacle, seed, "candidate-misses", pair.location)
+
+
+def replay(spec: PairsFile, name: str, pinned: PinnedPlacement, destination: Path) -> PairsFile:
+    """The repro of `pinned` on pair `name`, written at `destination` and loaded from there."""
+    pair = pair_named(spec, name)
+    write_repro(destination, spec, pair, pinned, HEADER)
+    return load_pairs_file(destination)
+
+
+def assert_replays(
+    original: PairsFile, name: str, pinned: PinnedPlacement, repro: PairsFile
+) -> None:
+    """The repro holds the original's robot, world and pair, with `pinned` as its one placement."""
+    assert repro.robot == original.robot
+    assert repro.world == original.world
+    (pair,) = repro.pairs
+    assert pair.name == name
+    assert pair.baseline == pair_named(original, name).baseline
+    assert pair.candidate == pair_named(original, name).candidate
+    (placement,) = pair.placements
+    assert dataclasses.replace(placement, location=pinned.location) == pinned
+
+
+# Reading
+
+
+def test_a_cylinder_and_boxes_are_read_with_their_values_seeds_directions_and_lines(
+    tmp_path: Path,
+) -> None:
+    pair = load_pairs_file(write(tmp_path, PINNED)).pairs[0]
+    cylinder, box, block = pair.placements
+    assert cylinder.obstacle == Cylinder(x=5.943, y=0.249, radius=0.025, height=0.323)
+    assert (cylinder.seed, cylinder.direction, cylinder.location.line) == (
+        1234,
+        "candidate-misses",
+        11,
+    )
+    assert box.obstacle == Box(x=6.7, y=0.0, yaw=0.0, length=0.657, width=0.657, height=0.328)
+    assert (box.seed, box.direction, box.location.line) == (7, None, 14)
+    assert block.obstacle == Box(x=4.0, y=-0.5, yaw=0.3, length=0.2, width=0.1, height=1.0)
+    assert (block.seed, block.direction, block.location.line) == (4294967295, "baseline-misses", 16)
+    assert cylinder.location.path == tmp_path / "gate.lasertest.yaml"
+
+
+def test_whole_numbers_are_read_as_metres_and_the_seed_may_be_zero(tmp_path: Path) -> None:
+    text = PLACEMENTS_HEAD + (
+        "    placements:\n"
+        "      - {obstacle: {shape: cylinder, x: 5, y: 0, radius: 1, height: 2}, seed: 0}\n"
+    )
+    (placement,) = load_pairs_file(write(tmp_path, text)).pairs[0].placements
+    assert placement.obstacle == Cylinder(5.0, 0.0, 1.0, 2.0)
+    assert isinstance(placement.obstacle.x, float)
+    assert placement.seed == 0
+
+
+def test_a_pair_without_placements_has_none(tmp_path: Path) -> None:
+    spec = load_pairs_file(write(tmp_path, VALID_PAIRS))
+    assert [pair.placements for pair in spec.pairs] == [(), ()]
+
+
+@pytest.mark.parametrize("case", CASES.values(), ids=CASES.keys())
+def test_a_broken_placement_is_a_spec_error_naming_its_line_field_problem_and_fix(
+    tmp_path: Path, case: Case
+) -> None:
+    assert PINNED.count(case.old) == 1
+    path = write(tmp_path, PINNED.replace(case.old, case.new))
+    with pytest.raises(SpecError) as raised:
+        load_pairs_file(path)
+    error = raised.value
+    assert (error.location.path, error.location.line, error.field) == (path, case.line, case.field)
+    assert case.problem in error.problem
+    assert case.fix in error.fix
+
+
+@pytest.mark.parametrize("case", EMPTY_CASES.values(), ids=EMPTY_CASES.keys())
+def test_placements_that_hold_no_placement_are_an_error_on_their_line(
+    tmp_path: Path, case: tuple[str, str, str, str]
+) -> None:
+    tail, field, problem, fix = case
+    path = write(tmp_path, PLACEMENTS_HEAD + tail)
+    with pytest.raises(SpecError) as raised:
+        load_pairs_file(path)
+    assert (raised.value.location.line, raised.value.field) == (10, field)
+    assert problem in raised.value.problem
+    assert fix in raised.value.fix
+
+
+@pytest.mark.parametrize(
+    "name", ["a misspelt shape", "a negative seed", "no obstacle"], ids=lambda name: name
+)
+def test_a_broken_placement_is_one_clean_collection_error(
+    pytester: pytest.Pytester, name: str
+) -> None:
+    case = CASES[name]
+    (pytester.path / "gate.lasertest.yaml").write_text(PINNED.replace(case.old, case.new))
+    result = pytester.runpytest()
+    assert_one_clean_error(result, case.line, case.field, case)
+
+
+# obstacle_fields
+
+
+@pytest.mark.parametrize(
+    ("obstacle", "expected"),
+    [
+        (
+            Box(1.0, -2.0, 0.5, 0.3, 0.2, 1.5),
+            {
+                "shape": "box",
+                "x": 1.0,
+                "y": -2.0,
+                "yaw": 0.5,
+                "length": 0.3,
+                "width": 0.2,
+                "height": 1.5,
+            },
+        ),
+        (
+            Cylinder(1.0, -2.0, 0.3, 1.5),
+            {"shape": "cylinder", "x": 1.0, "y": -2.0, "radius": 0.3, "height": 1.5},
+        ),
+    ],
+    ids=["box", "cylinder"],
+)
+def test_obstacle_fields_are_the_shape_then_the_fields_a_placement_is_written_with(
+    obstacle: Obstacle, expected: dict[str, object]
+) -> None:
+    fields = obstacle_fields(obstacle)
+    assert fields == expected
+    assert list(fields) == list(expected)
+
+
+def test_obstacle_fields_turn_numpy_floats_into_floats_yaml_can_write() -> None:
+    fields = obstacle_fields(RECORDED)
+    assert all(type(value) is float for key, value in fields.items() if key != "shape")
+    yaml.safe_dump(fields)
+
+
+# The repro
+
+
+def test_the_paper_s_size_failure_replays_from_its_repro_in_another_directory(
+    tmp_path: Path,
+) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pinned = pinned_for(pair_named(original, "size"))
+    destination = tmp_path / "artifacts" / "paper" / "size-candidate-misses-0.lasertest.yaml"
+    assert_replays(original, "size", pinned, replay(original, "size", pinned, destination))
+
+
+def test_a_repro_keeps_the_model_overrides_as_written_and_drops_settings_and_other_pairs(
+    tmp_path: Path,
+) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    written = yaml.safe_load(repro_yaml(original, pair, pinned_for(pair), tmp_path / "r.yaml", ()))
+    assert list(written) == ["robot", "world", "pairs"]
+    assert list(written["pairs"]) == ["size"]
+    assert written["pairs"]["size"]["candidate"] == {
+        "model": "clearpath_lms1xx_gazebo",
+        "samples": 16,
+        "min_angle": -1.57,
+        "max_angle": 1.57,
+        "range": {"max": 10.0},
+    }
+    assert written["pairs"]["size"]["placements"] == [
+        {"obstacle": obstacle_fields(RECORDED), "seed": 1234, "direction": "candidate-misses"}
+    ]
+
+
+def test_a_repro_starts_with_the_header_as_comments_then_a_blank_line(tmp_path: Path) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    header = ["first line", "", "two\nlines"]
+    text = repro_yaml(original, pair, pinned_for(pair), tmp_path / "r.yaml", header)
+    assert text.startswith("# first line\n#\n# two\n# lines\n\nrobot: husky\n")
+
+
+def test_a_placement_without_a_direction_is_written_without_one(tmp_path: Path) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    pinned = PinnedPlacement(Box(6.7, 0.0, 0.1, 0.657, 0.657, 0.328), 7, None, pair.location)
+    destination = tmp_path / "box.lasertest.yaml"
+    assert_replays(original, "size", pinned, replay(original, "size", pinned, destination))
+    assert "direction" not in destination.read_text()
+
+
+@pytest.mark.parametrize("written", ["robots/mybot", "robots/mybot/robot.yaml", "./robots/mybot"])
+@pytest.mark.parametrize(
+    "destination",
+    ["artifacts/gate/to_lms111.lasertest.yaml", "project/regressions/to_lms111.lasertest.yaml"],
+)
+def test_a_robot_directory_given_by_relative_path_is_found_from_the_repro_s_directory(
+    tmp_path: Path, written: str, destination: str
+) -> None:
+    robot_dir = tmp_path / "project" / "robots" / "mybot"
+    write(robot_dir, MY_ROBOT, "robot.yaml")
+    text = VALID_PAIRS.replace("robot: husky", f"robot: {written}")
+    original = load_pairs_file(write(tmp_path / "project", text))
+    pinned = pinned_for(pair_named(original, "to_lms111"))
+    repro = replay(original, "to_lms111", pinned, tmp_path / destination)
+    assert_replays(original, "to_lms111", pinned, repro)
+    assert repro.robot.name == "My bot"
+    robot = yaml.safe_load((tmp_path / destination).read_text())["robot"]
+    assert not Path(robot).is_absolute()
+
+
+def test_a_robot_path_that_would_read_as_a_bundled_name_stays_a_path(tmp_path: Path) -> None:
+    write(tmp_path / "robots" / "husky", MY_ROBOT, "robot.yaml")
+    text = VALID_PAIRS.replace("robot: husky", "robot: ../robots/husky")
+    original = load_pairs_file(write(tmp_path / "project", text))
+    pinned = pinned_for(pair_named(original, "same"))
+    destination = tmp_path / "robots" / "same.lasertest.yaml"
+    repro = replay(original, "same", pinned, destination)
+    assert repro.robot.name == "My bot"
+    assert yaml.safe_load(destination.read_text())["robot"] == "./husky"
+
+
+def test_an_absolute_robot_path_is_kept_as_written(tmp_path: Path) -> None:
+    robot_file = write(tmp_path / "robots" / "mybot", MY_ROBOT, "robot.yaml")
+    text = VALID_PAIRS.replace("robot: husky", f"robot: {robot_file}")
+    original = load_pairs_file(write(tmp_path / "project", text))
+    pinned = pinned_for(pair_named(original, "same"))
+    destination = tmp_path / "elsewhere" / "same.lasertest.yaml"
+    assert_replays(original, "same", pinned, replay(original, "same", pinned, destination))
+    assert yaml.safe_load(destination.read_text())["robot"] == str(robot_file)
+
+
+def test_navigation_overrides_are_copied_so_the_repro_s_robot_navigates_the_same(
+    tmp_path: Path,
+) -> None:
+    text = VALID_PAIRS.replace(
+        "settings:",
+        "navigation:\n"
+        "  move_base: {controller_frequency: 10.0, back_up_recovery: true}\n"
+        "  dwa: {min_vel_x: -0.1, vx_samples: 8}\n"
+        "settings:",
+    )
+    original = load_pairs_file(write(tmp_path / "project", text))
+    assert ("dwa", "min_vel_x", -0.1) in original.robot.navigation
+    pinned = pinned_for(pair_named(original, "to_lms111"))
+    destination = tmp_path / "artifacts" / "to_lms111.lasertest.yaml"
+    assert_replays(
+        original, "to_lms111", pinned, replay(original, "to_lms111", pinned, destination)
+    )
+
+
+def test_profiles_shared_through_yaml_anchors_are_written_out_in_full(tmp_path: Path) -> None:
+    text = VALID_PAIRS.replace(
+        "    baseline:\n      samples: 720", "    baseline: &paper\n      samples: 720"
+    )
+    text = text.replace("    candidate:\n      model: sick_lms111", "    candidate: *paper")
+    original = load_pairs_file(write(tmp_path, text))
+    pinned = pinned_for(pair_named(original, "to_lms111"))
+    destination = tmp_path / "repro" / "to_lms111.lasertest.yaml"
+    assert_replays(
+        original, "to_lms111", pinned, replay(original, "to_lms111", pinned, destination)
+    )
+    assert "&" not in destination.read_text()
+    assert "*" not in destination.read_text()
+
+
+finite = st.floats(-50.0, 50.0, allow_nan=False)
+positive = st.floats(1e-6, 5.0, allow_nan=False)
+obstacles = st.one_of(
+    st.builds(Box, finite, finite, st.floats(-math.pi, math.pi), positive, positive, positive),
+    st.builds(Cylinder, finite, finite, positive, positive),
+)
+
+
+@settings(
+    max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(obstacle=obstacles, seed=st.integers(0, 2**32 - 1))
+def test_every_obstacle_and_seed_comes_back_equal_from_its_repro(
+    tmp_path: Path, obstacle: Obstacle, seed: int
+) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pinned = pinned_for(pair_named(original, "size"), obstacle, seed)
+    repro = replay(original, "size", pinned, tmp_path / "property.lasertest.yaml")
+    assert repro.pairs[0].placements[0].obstacle == obstacle
+    assert repro.pairs[0].placements[0].seed == seed
+
+
+@pytest.fixture
+def controller_module(tmp_path: Path) -> Iterator[str]:
+    """A controller module next to tmp_path/project's pairs file, named uniquely, and unloaded
+    after the test: the import system keeps a module once imported."""
+    name = f"repro_controller_{uuid.uuid4().hex}"
+    write(tmp_path / "project", "def make(robot, route):\n    return None\n", f"{name}.py")
+    yield name
+    sys.modules.pop(name, None)
+
+
+def test_a_controller_module_next_to_the_pairs_file_is_noted_in_a_repro_written_elsewhere(
+    tmp_path: Path, controller_module: str
+) -> None:
+    text = f"controller: {controller_module}:make\n{VALID_PAIRS}"
+    original = load_pairs_file(write(tmp_path / "project", text))
+    pair = pair_named(original, "same")
+    destination = tmp_path / "artifacts" / "same.lasertest.yaml"
+    repro_text = repro_yaml(original, pair, pinned_for(pair), destination, HEADER)
+    comments = [line for line in repro_text.splitlines() if line.startswith("#")]
+    assert comments[:2] == [f"# {line}" for line in HEADER]
+    assert f"controller: {controller_module}:make is the module" in comments[2]
+    assert "make it importable" in comments[2]
+    assert yaml.safe_load(repro_text)["controller"] == f"{controller_module}:make"
+
+
+def test_a_repro_next_to_the_pairs_file_finds_its_controller_module_with_no_note(
+    tmp_path: Path, controller_module: str
+) -> None:
+    text = f"controller: {controller_module}:make\n{VALID_PAIRS}"
+    original = load_pairs_file(write(tmp_path / "project", text))
+    pinned = pinned_for(pair_named(original, "same"))
+    destination = tmp_path / "project" / "same-repro.lasertest.yaml"
+    repro = replay(original, "same", pinned, destination)
+    assert_replays(original, "same", pinned, repro)
+    assert repro.controller is not None
+    assert original.controller is not None
+    assert repro.controller.factory is original.controller.factory
+    assert "importable" not in destination.read_text()
+
+
+def test_a_pair_gone_from_the_file_since_it_was_read_is_a_spec_error(tmp_path: Path) -> None:
+    path = write(tmp_path, VALID_PAIRS)
+    original = load_pairs_file(path)
+    pair = pair_named(original, "same")
+    path.write_text(VALID_PAIRS.replace("  same:", "  renamed:"))
+    with pytest.raises(SpecError, match="the pair is gone from the file"):
+        repro_yaml(original, pair, pinned_for(pair), tmp_path / "r.yaml", ())
+
+
+# Writing atomically
+
+
+def test_write_repro_makes_the_directories_and_leaves_only_the_repro(tmp_path: Path) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    destination = tmp_path / "a" / "b" / "size.lasertest.yaml"
+    assert write_repro(destination, original, pair, pinned_for(pair), HEADER) == destination
+    expected = repro_yaml(original, pair, pinned_for(pair), destination, HEADER)
+    assert destination.read_text(encoding="utf-8") == expected
+    assert os.listdir(destination.parent) == [destination.name]
+
+
+def test_a_failed_write_keeps_the_previous_repro_and_leaves_no_temporary_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    destination = write(tmp_path / "artifacts", "previous repro\n", "size.lasertest.yaml")
+
+    def full_disk(source: str, target: str) -> None:
+        raise OSError(28, "No space left on device")
+
+    # The last step failing leaves the most behind: a complete temporary file.
+    monkeypatch.setattr(os, "replace", full_disk)
+    with pytest.raises(OSError, match="No space left"):
+        write_repro(destination, original, pair, pinned_for(pair), HEADER)
+    assert destination.read_text() == "previous repro\n"
+    assert os.listdir(destination.parent) == [destination.name]
+
+
+def test_a_repro_that_cannot_be_made_writes_nothing(tmp_path: Path) -> None:
+    path = write(tmp_path / "project", VALID_PAIRS)
+    original = load_pairs_file(path)
+    pair = pair_named(original, "same")
+    path.write_text(VALID_PAIRS.replace("  same:", "  renamed:"))
+    destination = tmp_path / "artifacts" / "same.lasertest.yaml"
+    with pytest.raises(SpecError):
+        write_repro(destination, original, pair, pinned_for(pair), HEADER)
+    assert not destination.parent.exists()

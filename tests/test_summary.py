@@ -1,0 +1,82 @@
+"""The run's summary table, and how a trial's two runs are classified."""
+
+from __future__ import annotations
+
+import pytest
+
+from pytest_lasertest.summary import Summary
+from pytest_lasertest.trials import classify
+
+
+@pytest.mark.parametrize(
+    ("baseline", "candidate", "expected"),
+    [
+        (True, False, "regression"),
+        (False, False, "pre-existing"),
+        (False, True, "improvement"),
+        (True, True, "unchanged"),
+    ],
+)
+def test_a_trial_is_classified_by_which_robots_passed(
+    baseline: bool, candidate: bool, expected: str
+) -> None:
+    assert classify(baseline, candidate) == expected
+
+
+def searched(examples: int, rejected: int, **failure: str) -> list[tuple[str, object]]:
+    rows: list[tuple[str, object]] = [
+        ("lasertest.examples", examples),
+        ("lasertest.rejected", rejected),
+    ]
+    return rows + [(f"lasertest.{key}", value) for key, value in failure.items()]
+
+
+def test_the_summary_sums_each_pairs_placement_items_and_ignores_other_items() -> None:
+    summary = Summary()
+    summary.add("paper.lasertest.yaml::size[coverage]", True, [("lasertest.coverage_losses", 1)])
+    summary.add("paper.lasertest.yaml::size[no-obstacle]", False, [])
+    summary.add("paper.lasertest.yaml::size[candidate-misses-0]", False, searched(8, 1))
+    summary.add(
+        "paper.lasertest.yaml::size[candidate-misses-1]",
+        True,
+        searched(3, 0, failed_oracles="collision,goal", classification="regression"),
+    )
+    summary.add(
+        "paper.lasertest.yaml::size[baseline-misses-0]",
+        True,
+        searched(1, 0, failed_oracles="stuck,goal", classification="pre-existing"),
+    )
+    summary.add("husky.lasertest.yaml::ust[baseline-misses-0]", False, searched(8, 0))
+    header, husky, size = (line.split() for line in summary.lines(artifacts=None))
+    assert header[0] == "pair"
+    assert husky == [
+        "husky.lasertest.yaml::ust",
+        "1",
+        "8",
+        "0",
+        "(0%)",
+        "0",
+        "0",
+        "0",
+        "0",
+        "0",
+        "0",
+    ]
+    assert size == [
+        *("paper.lasertest.yaml::size", "3", "12", "1", "(8%)", "2"),
+        *("1", "1", "2", "1", "1"),
+    ]
+
+
+def test_the_summary_says_where_the_artifacts_of_failing_items_are() -> None:
+    summary = Summary()
+    summary.add("a.lasertest.yaml::p[candidate-misses-0]", True, searched(1, 0))
+    assert summary.lines("lasertest-artifacts")[-1] == (
+        "artifacts of the 1 failing placement items: lasertest-artifacts"
+    )
+
+
+def test_a_run_without_placement_items_has_no_summary() -> None:
+    summary = Summary()
+    summary.add("a.lasertest.yaml::p[coverage]", True, [])
+    assert summary.lines("out") == []
