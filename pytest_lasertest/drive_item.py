@@ -21,6 +21,7 @@ from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.spec import Pair, PairsFile
 from pytest_lasertest.spec.controller import ControllerChoice
+from pytest_lasertest.spec.errors import display_path
 
 CONTROLS_KEY = pytest.StashKey[dict[tuple[Path, str], PairDrive]]()
 PHYSICS_KEY = pytest.StashKey[PhysicsClient]()
@@ -118,8 +119,19 @@ class ControlItem(pytest.Item):
                 "the candidate fails without any obstacle: the change breaks the robot "
                 "everywhere, not only where the scanners differ",
                 drives,
-                [],
+                [f"  artifact   {display_path(path)}" for path in self._write_evidence(drives)],
             )
+
+    def _write_evidence(self, drives: PairDrive) -> tuple[Path, ...]:
+        """The failure's picture, empty Gazebo world and numbers, if the run asked for them."""
+        options = self.options
+        if options.artifacts is None:
+            return ()
+        from pytest_lasertest.evidence import write_control_evidence
+
+        return write_control_evidence(
+            options.artifacts, self.nodeid, self.spec, self.pair, drives, options.recorded()
+        )
 
     def repr_failure(
         self, excinfo: pytest.ExceptionInfo[BaseException], style: TracebackStyle | None = None

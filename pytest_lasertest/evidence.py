@@ -18,6 +18,7 @@ from pytest_lasertest.artifacts.files import artifact_path, write_json
 from pytest_lasertest.artifacts.picture import BeamFan, FailureFigure, draw_failure
 from pytest_lasertest.artifacts.repro import write_repro
 from pytest_lasertest.artifacts.sdf import write_world
+from pytest_lasertest.drives import PairDrive
 from pytest_lasertest.geometry import Box, FloatArray, Obstacle, ray_distances
 from pytest_lasertest.offsets import OffsetBox
 from pytest_lasertest.placement import Witness
@@ -80,19 +81,29 @@ def failure_moment(run: Run) -> tuple[float, str]:
 
 def failure_figure(failure: Failure) -> FailureFigure:
     """The picture of the candidate's failure at the minimal placement."""
-    result, pair = failure.result, failure.pair
-    candidate = result.candidate
-    baseline = result.baseline if result.baseline is not None else candidate
+    result = failure.result
+    baseline = result.baseline if result.baseline is not None else result.candidate
+    title = f"{failure.nodeid}: {result.classification}"
+    return drive_figure(
+        title, failure.spec, failure.pair, (baseline, result.candidate), result.placement.obstacle
+    )
+
+
+def drive_figure(
+    title: str, spec: PairsFile, pair: Pair, runs: tuple[Run, Run], obstacle: Obstacle | None
+) -> FailureFigure:
+    """The picture of the candidate's failure in one world, both robots' runs (baseline,
+    candidate) drawn at the moment the candidate failed."""
+    baseline, candidate = runs
     time, label = failure_moment(candidate)
-    obstacle = result.placement.obstacle
     candidate_pose, baseline_pose = _pose_at(candidate, time), _pose_at(baseline, time)
-    robot = failure.spec.robot
+    world = spec.world
     return FailureFigure(
-        title=f"{failure.nodeid}: {result.classification}, candidate {label}",
+        title=f"{title}, candidate {label}",
         obstacle=obstacle,
         baseline_path=baseline.poses[:, :2],
         candidate_path=candidate.poses[:, :2],
-        footprint=robot.footprint_array(),
+        footprint=spec.robot.footprint_array(),
         candidate_pose=_triple(candidate_pose),
         baseline_pose=_triple(baseline_pose),
         beams=(
@@ -108,17 +119,48 @@ def failure_figure(failure: Failure) -> FailureFigure:
         ),
         failure=_failure_point(candidate, candidate_pose, obstacle),
         failure_label=label,
-        goal=(failure.spec.world.goal.x, failure.spec.world.goal.y),
-        start=(failure.spec.world.start.x, failure.spec.world.start.y),
+        goal=(world.goal.x, world.goal.y),
+        start=(world.start.x, world.start.y),
     )
 
 
-def beam_fan(label: str, profile: LaserProfile, pose: FloatArray, obstacle: Obstacle) -> BeamFan:
+def write_control_evidence(
+    directory: Path,
+    nodeid: str,
+    spec: PairsFile,
+    pair: Pair,
+    drives: PairDrive,
+    run_options: dict[str, object],
+) -> tuple[Path, ...]:
+    """The artifacts of a failure in the empty world: the picture, the empty Gazebo world and
+    every number; the item itself replays it."""
+    png, _, world, numbers = (artifact_path(directory, nodeid, suffix) for suffix in SUFFIXES)
+    runs = (drives.baseline, drives.candidate)
+    draw_failure(drive_figure(f"{nodeid}: no obstacle", spec, pair, runs, None), png)
+    write_world(world, pair.name, ())
+    evidence = {
+        "item": nodeid,
+        "pairs_file": str(spec.path),
+        "pair": pair.name,
+        **run_options,
+        "candidate": _run_json(drives.candidate),
+        "baseline": _run_json(drives.baseline),
+    }
+    write_json(numbers, evidence)
+    return png, world, numbers
+
+
+def beam_fan(
+    label: str, profile: LaserProfile, pose: FloatArray, obstacle: Obstacle | None
+) -> BeamFan:
     """The scanner's beams at `pose`, each stopped where it enters the obstacle or at range_max."""
     origins, directions = (array[0] for array in profile.rays(pose.reshape(1, 3)))
-    distances = ray_distances(origins, directions, obstacle)
-    hits = (distances >= profile.range_min) & (distances <= profile.range_max)
-    hits &= obstacle.height > profile.scan_height
+    hits = np.zeros(len(origins), dtype=bool)
+    distances = np.full(len(origins), np.inf)
+    if obstacle is not None:
+        distances = ray_distances(origins, directions, obstacle)
+        hits = (distances >= profile.range_min) & (distances <= profile.range_max)
+        hits &= obstacle.height > profile.scan_height
     lengths = np.where(hits, distances, profile.range_max)
     ends = origins + directions * lengths[:, np.newaxis]
     name = f"{label}: {profile.beam_count} beams, {profile.range_max:g} m"
@@ -175,9 +217,9 @@ def _pose_at(run: Run, time: float) -> FloatArray:
     return pose
 
 
-def _failure_point(run: Run, pose: FloatArray, obstacle: Obstacle) -> tuple[float, float]:
+def _failure_point(run: Run, pose: FloatArray, obstacle: Obstacle | None) -> tuple[float, float]:
     """Where the obstacle was touched (its point nearest the robot), else where the robot was."""
-    if run.verdicts.collision.time is None:
+    if run.verdicts.collision.time is None or obstacle is None:
         return float(pose[0]), float(pose[1])
     return _nearest_point(obstacle, float(pose[0]), float(pose[1]))
 

@@ -57,6 +57,10 @@ class LaserOptions:
             return budget
         return Budget(self.examples, budget.shrink_simulations, budget.explain)
 
+    def recorded(self) -> dict[str, object]:
+        """The run's seed, profile and policy, as the artifacts record them."""
+        return {"seed": self.seed, "profile": self.profile, "policy": self.policy}
+
     def replay_options(self) -> str:
         """The options that reproduce this run."""
         examples = f" --laser-examples={self.examples}" if self.examples is not None else ""

@@ -75,6 +75,7 @@ class PlacementFailed(Exception):
         trials: Trials,
         box: OffsetBox,
         artifacts: tuple[Path, ...],
+        notes: tuple[str, ...],
     ) -> None:
         super().__init__(witness.id)
         self.witness = witness
@@ -82,6 +83,7 @@ class PlacementFailed(Exception):
         self.trials = trials
         self.box = box
         self.artifacts = artifacts
+        self.notes = notes
 
 
 class PlacementItem(pytest.Item):
@@ -163,10 +165,12 @@ class PlacementItem(pytest.Item):
         ]
         if outcome.failure is None:
             return
-        result = cast(TrialFailed, outcome.failure).result
+        failure = cast(TrialFailed, outcome.failure)
+        result = failure.result
         self.user_properties += failure_properties(result)
         paths = self._write_failure(witness, result, trials, box)
-        raise PlacementFailed(witness, result, trials, box, paths)
+        notes = tuple(str(note) for note in getattr(failure, "__notes__", ()))
+        raise PlacementFailed(witness, result, trials, box, paths, notes)
 
     def _setting(self) -> Setting:
         return Setting(
@@ -232,13 +236,8 @@ class PlacementItem(pytest.Item):
             return ()
         from pytest_lasertest.evidence import Failure, write_evidence
 
-        run_options: dict[str, object] = {
-            "seed": options.seed,
-            "profile": options.profile,
-            "policy": options.policy,
-        }
         failure = Failure(
-            self.nodeid, self.spec, self.pair, witness, result, trials, box, run_options
+            self.nodeid, self.spec, self.pair, witness, result, trials, box, options.recorded()
         )
         return write_evidence(options.artifacts, failure)
 
@@ -268,6 +267,9 @@ class PlacementItem(pytest.Item):
             *beam_lines(scene, result),
             *trial_lines(result, pair),
             search_line(failed.trials, failed.box),
+            # Hypothesis's own notes: the falsifying example and, in profiles that explain, what
+            # its explain phase found.
+            *(f"  hypothesis {note}" for note in failed.notes),
             f"  policy     {options.policy}",
             f"  seed       {options.seed}",
             *self._replay_lines(failed.artifacts),

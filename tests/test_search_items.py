@@ -210,3 +210,20 @@ def test_a_pinned_failure_both_robots_share_fails_only_under_the_candidate_polic
         ]
     )
     pytester.runpytest("--laser-policy=regression").assert_outcomes(passed=1)
+
+
+def test_a_control_item_that_fails_writes_its_picture_world_and_numbers(
+    pytester: pytest.Pytester, paper: Path
+) -> None:
+    result = pytester.runpytest(
+        "-k", "distance and no-obstacle", "--laser-seed=1", "--laser-artifacts=out"
+    )
+    result.assert_outcomes(failed=1)
+    stem = ARTIFACTS / "distance_no-obstacle"
+    result.stdout.fnmatch_lines([f"  artifact   {stem}.png", f"  artifact   {stem}.world"])
+    assert Path(f"{stem}.png").read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
+    world = ET.parse(f"{stem}.world").getroot()
+    assert [model.get("name") for model in world.iter("model")] == ["ground_plane"]
+    evidence = json.loads(Path(f"{stem}.json").read_text())
+    assert evidence["candidate"]["verdicts"]["stuck"]["passed"] is False
+    assert evidence["baseline"]["passed"] is True

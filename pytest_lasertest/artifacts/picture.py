@@ -63,7 +63,7 @@ class FailureFigure:
     """Everything the picture of one failure shows, in the world frame."""
 
     title: str  # one line, e.g. the item id and the oracle
-    obstacle: Obstacle
+    obstacle: Obstacle | None  # None for a failure in the empty world
     baseline_path: FloatArray  # (T, 2) m
     candidate_path: FloatArray  # (T, 2) m
     footprint: FloatArray  # (V, 2) m, robot footprint polygon in the base frame
@@ -93,7 +93,7 @@ def build_figure(figure: FailureFigure) -> Figure:
     FigureCanvasAgg(picture)
     axes = picture.add_subplot()
     low, high, step = _frame(axes, figure)
-    obstacle = _draw_obstacle(axes, figure.obstacle)
+    obstacles = [] if figure.obstacle is None else [_draw_obstacle(axes, figure.obstacle)]
     beams, paths, footprints = [], [], []
     for (name, colour, path, pose), fan in zip(_robots(figure), figure.beams, strict=True):
         beams.append(_draw_beams(axes, fan, colour))
@@ -104,7 +104,7 @@ def build_figure(figure: FailureFigure) -> Figure:
     start, goal, failure = _draw_markers(axes, figure)
     _add_scale_bar(axes, step)
     # Filled column by column: the two long beam labels share the first, so three columns fit.
-    handles: list[Artist] = [*beams, obstacle, start, *paths, *footprints, goal, failure]
+    handles: list[Artist] = [*beams, *obstacles, start, *paths, *footprints, goal, failure]
     # Below the axes, so it never hides the obstacle or a path and leaves the view its width.
     picture.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8)
     picture.suptitle(figure.title, fontsize=10)
@@ -128,7 +128,7 @@ def _frame(axes: Axes, figure: FailureFigure) -> tuple[FloatArray, FloatArray, f
         [
             figure.baseline_path,
             figure.candidate_path,
-            _outline(figure.obstacle),
+            *([] if figure.obstacle is None else [_outline(figure.obstacle)]),
             [figure.goal, figure.start, figure.failure],
         ]
     )
@@ -201,7 +201,8 @@ def _placed(points: FloatArray, pose: Pose) -> FloatArray:
 
 def _draw_obstacle(axes: Axes, obstacle: Obstacle) -> Patch:
     """The obstacle's footprint, filled: a box turned by its yaw or a circle."""
-    style = {"facecolor": OBSTACLE_COLOUR, "edgecolor": "black", "label": "obstacle", "zorder": 2}
+    # Above the footprints: a 5 cm pole would hide under the robot that touches it.
+    style = {"facecolor": OBSTACLE_COLOUR, "edgecolor": "black", "label": "obstacle", "zorder": 5.5}
     if isinstance(obstacle, Box):
         return axes.add_patch(Polygon(_outline(obstacle), closed=True, **style))
     return axes.add_patch(Circle((obstacle.x, obstacle.y), obstacle.radius, **style))
