@@ -44,7 +44,8 @@ class Failure:
     result: TrialResult
     trials: Trials
     box: OffsetBox
-    run_options: dict[str, object]  # the seed, profile and policy of the run
+    seed: int  # of the run, and of its scan noise
+    run_options: dict[str, object]  # the seed, profile and policy of the run, for the record
 
 
 def write_evidence(directory: Path, failure: Failure) -> tuple[Path, ...]:
@@ -55,7 +56,7 @@ def write_evidence(directory: Path, failure: Failure) -> tuple[Path, ...]:
     obstacle = failure.result.placement.obstacle
     draw_failure(failure_figure(failure), png)
     pinned = PinnedPlacement(
-        obstacle, _seed(failure), failure.result.placement.direction, Location(repro, 1)
+        obstacle, failure.seed, failure.result.placement.direction, Location(repro, 1)
     )
     header = [
         f"The minimal failure of {failure.nodeid}, pinned.",
@@ -242,9 +243,3 @@ def _nearest_point(obstacle: Obstacle, x: float, y: float) -> tuple[float, float
 def _triple(pose: FloatArray) -> tuple[float, float, float]:
     x, y, yaw = pose.tolist()
     return x, y, yaw
-
-
-def _seed(failure: Failure) -> int:
-    seed = failure.run_options["seed"]
-    assert isinstance(seed, int)
-    return seed

@@ -1,9 +1,12 @@
-"""The placement items of a pair: one per direction and witness index, solved when first run.
+"""The placement items of a pair: one per direction and witness index, solved when first run,
+each searching around its witness.
 
 Collection does no solving: item names come from the pair's name, the two directions and
 `settings.witnesses`, so every run and every pytest-xdist worker collects the same items. The
 first item of a pair to run plans the pair (Z3, imported only then) and the plan is kept for the
 session; planning is deterministic, so workers that plan the same pair find the same witnesses.
+Each item then perturbs its witness with Hypothesis (`perturb.py`, imported only then) within
+the box where it stays discriminating (`offsets.py`), and a failure shrinks toward the witness.
 """
 
 from __future__ import annotations
@@ -136,8 +139,7 @@ class PlacementItem(pytest.Item):
         """Perturb the witness with Hypothesis; a failure shrinks and fails the item."""
         from pytest_lasertest.perturb import search
 
-        options, budget = self.options, self.options.budget
-        settings = self.spec.settings
+        budget, settings = self.options.budget, self.spec.settings
         sizes = (settings.min_obstacle_size, settings.max_obstacle_size)
         box = offset_box(scene, witness.placement, sizes, np.random.default_rng(self._seed()))
         trials = Trials(
@@ -145,7 +147,7 @@ class PlacementItem(pytest.Item):
             scene,
             witness.placement,
             sizes,
-            options.policy,
+            self.options.policy,
             budget.shrink_simulations,
         )
         outcome = search(
@@ -163,9 +165,11 @@ class PlacementItem(pytest.Item):
             ("lasertest.controller", self.controller.name),
             *search_properties(box, trials),
         ]
-        if outcome.failure is None:
-            return
-        failure = cast(TrialFailed, outcome.failure)
+        if outcome.failure is not None:
+            self._fail(witness, cast(TrialFailed, outcome.failure), trials, box)
+
+    def _fail(self, witness: Witness, failure: TrialFailed, trials: Trials, box: OffsetBox) -> None:
+        """Record the minimal failure, write its artifacts, and fail the item with it."""
         result = failure.result
         self.user_properties += failure_properties(result)
         paths = self._write_failure(witness, result, trials, box)
@@ -237,7 +241,15 @@ class PlacementItem(pytest.Item):
         from pytest_lasertest.evidence import Failure, write_evidence
 
         failure = Failure(
-            self.nodeid, self.spec, self.pair, witness, result, trials, box, options.recorded()
+            self.nodeid,
+            self.spec,
+            self.pair,
+            witness,
+            result,
+            trials,
+            box,
+            options.seed,
+            options.recorded(),
         )
         return write_evidence(options.artifacts, failure)
 

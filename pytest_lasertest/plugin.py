@@ -64,7 +64,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         default=None,
         metavar="N",
         help="perturbations each placement item tries, the witness first (default: the "
-        "profile's: dev 10, ci 8, nightly 100, triage 4).",
+        "profile's: dev 10, ci 16, nightly 100, triage 4).",
     )
     group.addoption(
         "--laser-policy",

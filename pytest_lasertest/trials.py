@@ -91,12 +91,12 @@ class Trials:
     sizes: tuple[float, float]  # m, the smallest and largest obstacle the pairs file allows
     policy: Policy
     shrink_budget: int  # simulations after the first failure
-    simulations: int = 0
+    simulations: int = field(default=0, init=False)
     # Simulations up to the candidate's run that first failed, not counting its classification.
-    simulations_to_failure: int | None = None
-    results: dict[Offset, TrialResult] = field(default_factory=dict)  # by offset, first seen
-    rejections: set[Offset] = field(default_factory=set)
-    _at_candidate: int = 0  # simulations up to the last trial's candidate run
+    simulations_to_failure: int | None = field(default=None, init=False)
+    results: dict[Offset, TrialResult] = field(default_factory=dict, init=False)
+    rejections: set[Offset] = field(default_factory=set, init=False)
+    _at_candidate: int = field(default=0, init=False)  # simulations up to the last candidate run
 
     def __call__(self, offset: Offset) -> str:
         placement = perturbed(self.witness, offset)

@@ -338,7 +338,7 @@ def test_the_sparser_scanner_drives_into_its_witness_and_the_denser_one_stops_sh
         assert re.fullmatch(r"(box|cylinder) .* m high", properties["lasertest.obstacle"])
         assert properties["lasertest.candidate.collision"] in {"pass", "fail"}
     dense = cases["paper.lasertest.yaml::size[baseline-misses-1]"].properties
-    assert int(dense["lasertest.examples"]) == 8
+    assert int(dense["lasertest.examples"]) == 16
     sparse = cases["paper.lasertest.yaml::size[candidate-misses-1]"].properties
     assert sparse["lasertest.candidate.collision"] == "fail"
     assert float(sparse["lasertest.candidate.collision_margin"]) <= 0.0
@@ -391,7 +391,7 @@ def test_items_run_and_sum_up_the_same_under_xdist_as_serially(
     assert summary(serial.stdout.lines) == summary(distributed.stdout.lines)
     assert summary(serial.stdout.lines)[1].split() == [
         # witnesses, examples, rejected, failed, by oracle, regressions, pre-existing
-        *("paper.lasertest.yaml::size", "6", "37", "0", "(0%)", "3", "2", "1", "3", "1", "2"),
+        *("paper.lasertest.yaml::size", "6", "55", "0", "(0%)", "3", "2", "1", "3", "1", "2"),
     ]
     assert {
         name: case.outcome for name, case in junit_cases(pytester.path / "serial.xml").items()
