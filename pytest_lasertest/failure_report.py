@@ -112,6 +112,9 @@ def search_properties(box: OffsetBox, trials: Trials) -> list[tuple[str, object]
         ("lasertest.rejected", trials.rejected),
         ("lasertest.simulations", trials.simulations),
         ("lasertest.failures", trials.failures),
+        # Found whether or not the policy fails the item on them.
+        ("lasertest.regressions", trials.count("regression")),
+        ("lasertest.pre_existing", trials.count("pre-existing")),
     ]
     if trials.simulations_to_failure is not None:
         rows.append(("lasertest.simulations_to_failure", trials.simulations_to_failure))

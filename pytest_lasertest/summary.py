@@ -30,21 +30,22 @@ class PairTally:
     rejected: int = 0
     failed: int = 0  # items the policy failed
     oracles: dict[str, int] = field(default_factory=lambda: dict.fromkeys(ORACLES, 0))
-    classes: dict[str, int] = field(default_factory=dict)
+    regressions: int = 0  # items whose search found a regression, failed or not
+    pre_existing: int = 0  # items whose search found a failure the baseline shares
 
     def add(self, failed: bool, properties: Mapping[str, object]) -> None:
         """Count one placement item's report."""
         self.witnesses += 1
         self.examples += _whole(properties.get("lasertest.examples"))
         self.rejected += _whole(properties.get("lasertest.rejected"))
+        self.regressions += _whole(properties.get("lasertest.regressions")) > 0
+        self.pre_existing += _whole(properties.get("lasertest.pre_existing")) > 0
         if not failed:
             return
         self.failed += 1
         for oracle in str(properties.get("lasertest.failed_oracles", "")).split(","):
             if oracle in self.oracles:
                 self.oracles[oracle] += 1
-        classification = str(properties.get("lasertest.classification", ""))
-        self.classes[classification] = self.classes.get(classification, 0) + 1
 
     def row(self) -> tuple[str, ...]:
         drawn = self.examples + self.rejected
@@ -55,8 +56,8 @@ class PairTally:
             f"{self.rejected}{share}",
             str(self.failed),
             *(str(self.oracles[oracle]) for oracle in ORACLES),
-            str(self.classes.get("regression", 0)),
-            str(self.classes.get("pre-existing", 0)),
+            str(self.regressions),
+            str(self.pre_existing),
         )
 
 

@@ -135,6 +135,10 @@ class Trials:
         """Distinct offsets the policy fails."""
         return sum(result.fails(self.policy) for result in self.results.values())
 
+    def count(self, classification: Classification) -> int:
+        """Distinct offsets of one class."""
+        return sum(result.classification == classification for result in self.results.values())
+
     @property
     def witness_result(self) -> TrialResult | None:
         """The trial of the witness itself, if the search drove it."""

@@ -227,3 +227,18 @@ def test_a_control_item_that_fails_writes_its_picture_world_and_numbers(
     evidence = json.loads(Path(f"{stem}.json").read_text())
     assert evidence["candidate"]["verdicts"]["stuck"]["passed"] is False
     assert evidence["baseline"]["passed"] is True
+
+
+def test_under_the_regression_policy_a_failure_the_baseline_shares_passes_and_is_counted(
+    pytester: pytest.Pytester, paper: Path
+) -> None:
+    # Both robots get stuck at this witness, a 5 cm box beside the route.
+    item = "paper.lasertest.yaml::size[baseline-misses-2]"
+    run = ("-k", "size and baseline-misses-2", "--laser-seed=1", "--laser-examples=2")
+    result = pytester.runpytest(*run, "--laser-policy=regression", "--junitxml=report.xml")
+    result.assert_outcomes(passed=1)
+    found = properties(pytester, "report.xml", item)
+    assert found["lasertest.candidate.stuck"] == found["lasertest.baseline.stuck"] == "fail"
+    assert int(found["lasertest.pre_existing"]) >= 1
+    assert found["lasertest.regressions"] == "0"
+    pytester.runpytest(*run, "--laser-policy=candidate").assert_outcomes(failed=1)
