@@ -8,14 +8,13 @@ regression test on every run.
 
 from __future__ import annotations
 
-import contextlib
 import os
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
 import yaml
 
+from pytest_lasertest.artifacts.files import write_text
 from pytest_lasertest.spec.bundled import bundled_robots
 from pytest_lasertest.spec.errors import Location, SpecError, display_path
 from pytest_lasertest.spec.pairs import Pair, PairsFile
@@ -62,21 +61,9 @@ def repro_yaml(
 def write_repro(
     path: Path, spec: PairsFile, pair: Pair, pinned: PinnedPlacement, header: Sequence[str]
 ) -> Path:
-    """Write `repro_yaml` at `path` atomically (temporary file in the same directory, then
-    os.replace; no temporary left on error)."""
-    text = repro_yaml(spec, pair, pinned, path, header)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    # The leading dot keeps the half-written file out of `*.lasertest.yaml` collection.
-    descriptor, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
-    try:
-        with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
-            handle.write(text)
-        os.replace(temporary, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(temporary)
-        raise
-    return path
+    """Write `repro_yaml` at `path` atomically; the temporary file's leading dot keeps a
+    half-written repro out of `*.lasertest.yaml` collection."""
+    return write_text(path, repro_yaml(spec, pair, pinned, path, header))
 
 
 def _written(spec: PairsFile) -> dict[str, object]:
