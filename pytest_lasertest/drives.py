@@ -64,24 +64,28 @@ class RunCache:
 
     def __init__(self, size: int = 256) -> None:
         self.size = size
-        self.simulations = 0  # runs simulated, not found here
-        self._runs: OrderedDict[tuple[str, Scenario], Run] = OrderedDict()
+        self._runs: OrderedDict[tuple[str, str, Scenario], Run] = OrderedDict()
 
-    def __contains__(self, key: tuple[str, Scenario]) -> bool:
-        return key in self._runs
+    def knows(self, scenario: Scenario, controller: ControllerChoice) -> bool:
+        """Whether the scenario's run with this controller is kept."""
+        return _key(scenario, controller) in self._runs
 
     def run(self, scenario: Scenario, controller: ControllerChoice, client: PhysicsClient) -> Run:
         """The scenario's run with a controller from `controller`, simulated if not known."""
-        key = (controller.name, scenario)
+        key = _key(scenario, controller)
         if key in self._runs:
             self._runs.move_to_end(key)
             return self._runs[key]
         run = run_scenario(scenario, controller.factory, client)
-        self.simulations += 1
         self._runs[key] = run
         if len(self._runs) > self.size:
             self._runs.popitem(last=False)
         return run
+
+
+def _key(scenario: Scenario, controller: ControllerChoice) -> tuple[str, str, Scenario]:
+    # The name alone could be two modules' of one name; where it was chosen tells them apart.
+    return controller.name, controller.source, scenario
 
 
 def drive_pair(

@@ -160,8 +160,7 @@ class Trials:
     def _drive(self, profile: LaserProfile, placement: Placement) -> Run:
         setting = self.setting
         world = scenario(setting.spec, profile, (placement.obstacle,), setting.seed)
-        key = (setting.controller.name, world)
-        if key not in setting.cache:
+        if not setting.cache.knows(world, setting.controller):
             if self.shrink_simulations >= self.shrink_budget:
                 raise Untested(BUDGET_SPENT)
             self.simulations += 1
