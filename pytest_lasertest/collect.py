@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 from pathlib import Path
-from typing import Any, cast
+from typing import cast
 
 import pytest
 from _pytest._code.code import TerminalRepr, TracebackStyle
@@ -20,11 +20,11 @@ from pytest_lasertest.artifacts.files import artifact_path, write_json
 from pytest_lasertest.coverage import CoverageChange, CoverageComparison, compare_coverage
 from pytest_lasertest.drive_item import CONTROL, ControlItem
 from pytest_lasertest.nav.protocol import ControllerFactory
-from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
+from pytest_lasertest.pair_item import PairItem
 from pytest_lasertest.pinned_item import pinned_items
 from pytest_lasertest.placement_item import placement_items
 from pytest_lasertest.sensor import LaserProfile
-from pytest_lasertest.spec import Location, Pair, PairsFile, SpecError, load_pairs_file
+from pytest_lasertest.spec import Location, PairsFile, SpecError, load_pairs_file
 from pytest_lasertest.spec.controller import ControllerChoice, default_controller
 from pytest_lasertest.spec.errors import display_path
 
@@ -95,19 +95,10 @@ class CoverageLost(Exception):
         self.artifact = artifact
 
 
-class CoverageItem(pytest.Item):
+class CoverageItem(PairItem):
     """Checks that the candidate scans everything its baseline scanned, on the same robot."""
 
-    def __init__(self, *, spec: PairsFile, pair: Pair, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.spec = spec
-        self.pair = pair
-        self.add_marker("lasertest")
-        self.add_marker("coverage")
-
-    @property
-    def options(self) -> LaserOptions:
-        return self.config.stash[OPTIONS_KEY]
+    kind = "coverage"
 
     def runtest(self) -> None:
         comparison = compare_coverage(
@@ -177,9 +168,6 @@ class CoverageItem(pytest.Item):
         if lost.artifact is not None:
             lines.append(f"  evidence   {display_path(lost.artifact)}")
         return "\n".join(lines)
-
-    def reportinfo(self) -> tuple[Path, int, str]:
-        return self.path, self.pair.location.line - 1, f"{self.pair.name}[coverage]"
 
 
 def _qualified_name(factory: object) -> str:

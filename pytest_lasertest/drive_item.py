@@ -17,7 +17,8 @@ import pytest
 from _pytest._code.code import TerminalRepr, TracebackStyle
 
 from pytest_lasertest.drives import PairDrive, RunCache, drive_lines, drive_pair
-from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
+from pytest_lasertest.options import OPTIONS_KEY
+from pytest_lasertest.pair_item import PairItem
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.spec import Pair, PairsFile
 from pytest_lasertest.spec.controller import ControllerChoice
@@ -90,22 +91,14 @@ def drive_report(
     return "\n".join(lines)
 
 
-class ControlItem(pytest.Item):
+class ControlItem(PairItem):
     """Both robots through the empty world: the candidate must still reach the goal there."""
 
-    def __init__(
-        self, *, spec: PairsFile, pair: Pair, controller: ControllerChoice, **kwargs: Any
-    ) -> None:
-        super().__init__(**kwargs)
-        self.spec = spec
-        self.pair = pair
-        self.controller = controller
-        self.add_marker("lasertest")
-        self.add_marker("control")
+    kind = "control"
 
-    @property
-    def options(self) -> LaserOptions:
-        return self.config.stash[OPTIONS_KEY]
+    def __init__(self, *, controller: ControllerChoice, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.controller = controller
 
     def runtest(self) -> None:
         drives = control_drive(self.config, self.spec, self.pair, self.controller)
@@ -139,6 +132,3 @@ class ControlItem(pytest.Item):
         if isinstance(excinfo.value, DriveFailed):
             return drive_report(self, self.pair, self.controller, excinfo.value)
         return super().repr_failure(excinfo, style)
-
-    def reportinfo(self) -> tuple[Path, int, str]:
-        return self.path, self.pair.location.line - 1, self.name

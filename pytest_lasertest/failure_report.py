@@ -70,14 +70,18 @@ def beam_lines(scene: Scene, result: TrialResult) -> list[str]:
 
 def margin_line(verification: Verification) -> str:
     """The minimal placement's ray-cast margins."""
+    return f"  margins    {margins_text(verification)}"
+
+
+def margins_text(verification: Verification) -> str:
+    """`detection 15.2 mm, concealment ...`: each of the ray cast's margins."""
     parts = {
         "detection": verification.detection,
         "concealment": verification.concealment,
         "clearance": verification.clearance,
         "obstruction": verification.obstruction,
     }
-    described = ", ".join(f"{name} {value * 1000:.1f} mm" for name, value in parts.items())
-    return f"  margins    {described}"
+    return ", ".join(f"{name} {value * 1000:.1f} mm" for name, value in parts.items())
 
 
 def oracle_lines(result: TrialResult) -> list[str]:

@@ -17,7 +17,7 @@ from _pytest._code.code import TerminalRepr, TracebackStyle
 from pytest_lasertest.drive_item import DriveFailed, drive_report, physics_client, run_cache
 from pytest_lasertest.drives import drive_pair
 from pytest_lasertest.failure_report import MEANINGS
-from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
+from pytest_lasertest.pair_item import PairItem
 from pytest_lasertest.plan_report import DETECTED_BY, describe_obstacle
 from pytest_lasertest.spec import Pair, PairsFile
 from pytest_lasertest.spec.controller import ControllerChoice
@@ -25,29 +25,17 @@ from pytest_lasertest.spec.placements import PinnedPlacement
 from pytest_lasertest.trials import classify
 
 
-class PinnedItem(pytest.Item):
+class PinnedItem(PairItem):
     """Both robots past one pinned obstacle."""
 
+    kind = "pinned"
+
     def __init__(
-        self,
-        *,
-        spec: PairsFile,
-        pair: Pair,
-        controller: ControllerChoice,
-        pinned: PinnedPlacement,
-        **kwargs: Any,
+        self, *, controller: ControllerChoice, pinned: PinnedPlacement, **kwargs: Any
     ) -> None:
         super().__init__(**kwargs)
-        self.spec = spec
-        self.pair = pair
         self.controller = controller
         self.pinned = pinned
-        self.add_marker("lasertest")
-        self.add_marker("pinned")
-
-    @property
-    def options(self) -> LaserOptions:
-        return self.config.stash[OPTIONS_KEY]
 
     def runtest(self) -> None:
         pinned = self.pinned

@@ -28,13 +28,14 @@ from pytest_lasertest.failure_report import (
     beam_lines,
     failure_properties,
     margin_line,
+    margins_text,
     oracle_lines,
     search_line,
     search_properties,
     trial_lines,
 )
 from pytest_lasertest.offsets import OffsetBox, offset_box
-from pytest_lasertest.options import OPTIONS_KEY, LaserOptions
+from pytest_lasertest.pair_item import PairItem
 from pytest_lasertest.placement import (
     DIRECTIONS,
     REQUIRED_MARGIN,
@@ -89,31 +90,18 @@ class PlacementFailed(Exception):
         self.notes = notes
 
 
-class PlacementItem(pytest.Item):
+class PlacementItem(PairItem):
     """One witness of one direction of a pair: the obstacle only one of the scanners reads."""
 
+    kind = "placement"
+
     def __init__(
-        self,
-        *,
-        spec: PairsFile,
-        pair: Pair,
-        controller: ControllerChoice,
-        direction: Direction,
-        index: int,
-        **kwargs: Any,
+        self, *, controller: ControllerChoice, direction: Direction, index: int, **kwargs: Any
     ) -> None:
         super().__init__(**kwargs)
-        self.spec = spec
-        self.pair = pair
         self.controller = controller
         self.direction: Direction = direction
         self.index = index
-        self.add_marker("lasertest")
-        self.add_marker("placement")
-
-    @property
-    def options(self) -> LaserOptions:
-        return self.config.stash[OPTIONS_KEY]
 
     def runtest(self) -> None:
         plan = self._pair_plan()
@@ -141,7 +129,8 @@ class PlacementItem(pytest.Item):
 
         budget, settings = self.options.budget, self.spec.settings
         sizes = (settings.min_obstacle_size, settings.max_obstacle_size)
-        box = offset_box(scene, witness.placement, sizes, np.random.default_rng(self._seed()))
+        seed = self._seed()
+        box = offset_box(scene, witness.placement, sizes, np.random.default_rng(seed))
         trials = Trials(
             self._setting(),
             scene,
@@ -156,7 +145,7 @@ class PlacementItem(pytest.Item):
             TrialFailed,
             budget,
             key=self.nodeid,
-            seed=self._seed(),
+            seed=seed,
             database=self._database(),
         )
         # Hypothesis's pytest plugin shows this under --hypothesis-show-statistics.
@@ -312,7 +301,7 @@ class PlacementItem(pytest.Item):
             f"  obstacle   {describe_obstacle(witness.placement.obstacle)}",
             f"  read by    the {DETECTED_BY[self.direction]} at t = "
             f"{witness.placement.anchor:.2f} s, robot at ({x:.2f}, {y:.2f}, {yaw:.2f})",
-            f"  margins    {_margins(verification)}; each must reach "
+            f"  margins    {margins_text(verification)}; each must reach "
             f"{REQUIRED_MARGIN * 1000:.1f} mm",
         ]
         if verification.seen_by_misser_at:
@@ -322,9 +311,6 @@ class PlacementItem(pytest.Item):
         if rejected.artifact is not None:
             lines.append(f"  evidence   {display_path(rejected.artifact)}")
         return "\n".join(lines)
-
-    def reportinfo(self) -> tuple[Path, int, str]:
-        return self.path, self.pair.location.line - 1, self.name
 
 
 def placement_items(
@@ -355,13 +341,3 @@ def skip_reason(plan: DirectionPlan) -> str:
 
 def _witness(plan: DirectionPlan, index: int) -> Witness | None:
     return next((witness for witness in plan.witnesses if witness.index == index), None)
-
-
-def _margins(verification: Verification) -> str:
-    margins = {
-        "detection": verification.detection,
-        "concealment": verification.concealment,
-        "clearance": verification.clearance,
-        "obstruction": verification.obstruction,
-    }
-    return ", ".join(f"{name} {value * 1000:.1f} mm" for name, value in margins.items())
