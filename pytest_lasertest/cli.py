@@ -1,5 +1,6 @@
 """The `lasertest` command: `plan` finds placements, `explain` shows which beams read one of them,
-`catalogue` lists scanner models, `doctor` checks the installation."""
+`profile` shows the laser the gate reads from a robot description, `catalogue` lists scanner
+models, `doctor` checks the installation."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from pytest_lasertest.geometry import Pose3D
 from pytest_lasertest.path import NominalPath
@@ -21,6 +23,7 @@ from pytest_lasertest.spec import Pair, PairsFile, SpecError, load_pairs_file
 from pytest_lasertest.spec.bundled import bundled_robots
 from pytest_lasertest.spec.catalogue import load_catalogue
 from pytest_lasertest.spec.controller import default_controller
+from pytest_lasertest.spec.gitref import GitError
 from pytest_lasertest.spec.robot import load_robot_file
 
 # Distribution name -> module name, for the packages the plugin runs on.
@@ -31,6 +34,7 @@ DEPENDENCIES = {
     "hypothesis": "hypothesis",
     "z3-solver": "z3",
     "pybullet": "pybullet",
+    "xacro": "xacro",
 }
 
 
@@ -46,6 +50,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     explain.add_argument("pair", metavar="PAIR", help="a pair's name in the pairs file")
     explain.add_argument("witness", metavar="WITNESS", help="an id `lasertest plan` prints")
     explain.add_argument("--json", action="store_true", help="print JSON instead of text")
+    add_profile_parser(commands)
     catalogue = commands.add_parser("catalogue", help="list the scanner models `model:` can name")
     catalogue.add_argument("--json", action="store_true", help="print JSON instead of a table")
     commands.add_parser("doctor", help="check the installation and say what to fix")
@@ -55,12 +60,74 @@ def main(argv: Sequence[str] | None = None) -> int:
             return print_plan(args.pairs_file, as_json=args.json)
         if args.command == "explain":
             return print_explain(args.pairs_file, args.pair, args.witness, as_json=args.json)
+        if args.command == "profile":
+            return print_profile(args)
         if args.command == "catalogue":
             return print_catalogue(as_json=args.json)
         return run_doctor()
-    except SpecError as error:
+    except (SpecError, GitError) as error:
         print(f"lasertest: {error}", file=sys.stderr)
         return 2
+
+
+def add_profile_parser(commands: Any) -> None:
+    """`lasertest profile FILE [--sensor] [--ref] [--xacro-arg ...] [--package ...] [--json]`."""
+    profile = commands.add_parser(
+        "profile", help="print the laser profile the gate reads from a URDF, xacro or SDF file"
+    )
+    profile.add_argument("file", type=Path, metavar="FILE")
+    profile.add_argument(
+        "--sensor", metavar="NAME", help="the laser to read, when there are several"
+    )
+    profile.add_argument("--ref", metavar="REF", help="read the file at this git revision")
+    profile.add_argument(
+        "--xacro-arg",
+        action="append",
+        default=[],
+        type=parse_xacro_arg,
+        metavar="NAME:=VALUE",
+        help="a xacro arg (repeatable)",
+    )
+    profile.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        type=parse_package,
+        metavar="NAME=DIR",
+        help="where $(find NAME) points (repeatable)",
+    )
+    profile.add_argument("--json", action="store_true", help="print JSON instead of text")
+
+
+def parse_xacro_arg(text: str) -> tuple[str, str]:
+    """`NAME:=VALUE`, as xacro's command line takes it."""
+    name, separator, value = text.partition(":=")
+    if not separator or not name:
+        raise argparse.ArgumentTypeError(f"{text!r} is not NAME:=VALUE, e.g. laser_enabled:=1")
+    return name, value
+
+
+def parse_package(text: str) -> tuple[str, Path]:
+    """`NAME=DIR`: the directory `$(find NAME)` stands for."""
+    name, separator, directory = text.partition("=")
+    if not separator or not name or not directory:
+        raise argparse.ArgumentTypeError(f"{text!r} is not NAME=DIR, e.g. lms1xx=src/LMS1xx")
+    return name, Path(directory).absolute()
+
+
+def print_profile(args: argparse.Namespace) -> int:
+    """Print the laser a description holds, as the gate reads it."""
+    from pytest_lasertest.profile_report import profile_read_json, profile_read_text, read_profile
+
+    read = read_profile(
+        args.file,
+        sensor=args.sensor,
+        ref=args.ref,
+        args=dict(args.xacro_arg),
+        packages=dict(args.package),
+    )
+    print(json.dumps(profile_read_json(read), indent=2) if args.json else profile_read_text(read))
+    return 0
 
 
 @dataclass(frozen=True)

@@ -23,7 +23,8 @@ from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.pair_item import PairItem
 from pytest_lasertest.pinned_item import pinned_items
 from pytest_lasertest.placement_item import placement_items
-from pytest_lasertest.sensor import LaserProfile
+from pytest_lasertest.sensor import LaserProfile, same_sensing
+from pytest_lasertest.session import UNCHANGED_KEY
 from pytest_lasertest.spec import Location, PairsFile, SpecError, load_pairs_file
 from pytest_lasertest.spec.controller import ControllerChoice, default_controller
 from pytest_lasertest.spec.errors import display_path
@@ -44,6 +45,15 @@ class PairFile(pytest.File):
             raise self.CollectError(str(error)) from None
         items: list[pytest.Item] = []
         for pair in spec.pairs:
+            if same_sensing(pair.baseline.profile, pair.candidate.profile):
+                # An edit that changes nothing the scanner reads (the usual URDF change) costs
+                # the gate nothing; the summary says so.
+                self.config.stash[UNCHANGED_KEY].add(
+                    f"{self.nodeid}::{pair.name}",
+                    f"baseline {pair.baseline.label} and candidate {pair.candidate.label} "
+                    f"both read {pair.candidate.profile.describe()}",
+                )
+                continue
             if pair.placements:
                 items += pinned_items(self, spec, pair, controller)
                 continue

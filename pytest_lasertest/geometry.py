@@ -60,6 +60,28 @@ class Pose3D:
         """Whether the mounted frame's z axis points down, as a laser hung below its bracket."""
         return float(self.rotation()[2, 2]) < 0.0
 
+    def then(self, child: Pose3D) -> Pose3D:
+        """The pose `child`, given in this pose's frame, in the frame this pose is given in: the
+        composition a URDF joint chain makes, parent first."""
+        rotation = self.rotation()
+        xyz = np.asarray(self.xyz) + rotation @ np.asarray(child.xyz)
+        return _pose_from(rotation @ child.rotation(), xyz)
+
+    def inverse(self) -> Pose3D:
+        """The pose of the parent frame in this one."""
+        rotation = self.rotation().T
+        return _pose_from(rotation, -(rotation @ np.asarray(self.xyz)))
+
+
+def _pose_from(rotation: FloatArray, xyz: FloatArray) -> Pose3D:
+    """A Pose3D from a rotation matrix Rz(yaw) Ry(pitch) Rx(roll) and a translation."""
+    roll = math.atan2(rotation[2, 1], rotation[2, 2])
+    pitch = math.atan2(-rotation[2, 0], math.hypot(rotation[0, 0], rotation[1, 0]))
+    yaw = math.atan2(rotation[1, 0], rotation[0, 0])
+    x, y, z = (float(value) for value in xyz)
+    # + 0.0 turns a -0.0 from atan2 into 0.0, which reads better in a printed profile.
+    return Pose3D(xyz=(x, y, z), rpy=(roll + 0.0, pitch + 0.0, yaw + 0.0))
+
 
 def wrap_angle(angles: FloatArray) -> FloatArray:
     """Angles wrapped into [-pi, pi)."""

@@ -8,6 +8,8 @@ The JSON is a stable contract (documented in the README):
 
 from __future__ import annotations
 
+import dataclasses
+
 from pytest_lasertest.geometry import Box, Obstacle
 from pytest_lasertest.placement import ROLES, PairPlan, Status, Witness
 from pytest_lasertest.sensor import LaserProfile
@@ -53,7 +55,9 @@ def profile_json(profile: LaserProfile) -> dict[str, object]:
         "max_angle": profile.max_angle,
         "range_min": profile.range_min,
         "range_max": profile.range_max,
+        "range_resolution": profile.range_resolution,
         "update_rate": profile.update_rate,
+        "noise": None if profile.noise is None else dataclasses.asdict(profile.noise),
         "mount": {"xyz": list(profile.pose.xyz), "rpy": list(profile.pose.rpy)},
     }
 

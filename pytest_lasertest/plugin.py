@@ -24,7 +24,8 @@ from pytest_lasertest.options import (
     parse_profile,
     parse_seed,
 )
-from pytest_lasertest.session import LaserSession, XdistHooks
+from pytest_lasertest.session import UNCHANGED_KEY, LaserSession, XdistHooks
+from pytest_lasertest.summary import Unchanged
 
 SEED_KEY = "lasertest_seed"
 
@@ -113,9 +114,10 @@ def pytest_configure(config: pytest.Config) -> None:
     config.stash[OPTIONS_KEY] = options
     explicit = config.args_source == pytest.Config.ArgsSource.ARGS
     config.args = collection_args(config.args, explicit, named, always, here)
-    config.pluginmanager.register(LaserSession(options), "lasertest-session")
+    unchanged = config.stash[UNCHANGED_KEY] = Unchanged()
+    config.pluginmanager.register(LaserSession(options, unchanged), "lasertest-session")
     if config.pluginmanager.hasplugin("xdist"):
-        config.pluginmanager.register(XdistHooks(SEED_KEY), "lasertest-xdist")
+        config.pluginmanager.register(XdistHooks(SEED_KEY, unchanged), "lasertest-xdist")
 
 
 def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions:

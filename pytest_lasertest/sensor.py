@@ -209,6 +209,16 @@ def same_geometry(first: LaserProfile, second: LaserProfile) -> bool:
     )
 
 
+def same_sensing(first: LaserProfile, second: LaserProfile) -> bool:
+    """Whether two scanners read every world alike: the same beams from the same place at the
+    same instants, quantised and blurred alike. A pair of them has nothing to test."""
+    return (
+        same_geometry(first, second)
+        and first.range_resolution == second.range_resolution
+        and first.noise == second.noise
+    )
+
+
 def _directions_in_base(pose: Pose3D, angles: FloatArray) -> FloatArray:
     """Laser-frame beam angles, shape (N,), turned into base-frame angles, shape (N,), rad."""
     in_laser = np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)])

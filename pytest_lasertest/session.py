@@ -9,18 +9,24 @@ from typing import Any
 import pytest
 
 from pytest_lasertest.options import OPTIONS_KEY, LaserOptions, is_pairs_file
-from pytest_lasertest.summary import Summary
+from pytest_lasertest.summary import Summary, Unchanged
+
+# Where collection notes the pairs whose scanners read alike.
+UNCHANGED_KEY = pytest.StashKey[Unchanged]()
+# The pytest-xdist `workeroutput` entry that carries them from a worker to the controller.
+UNCHANGED_OUTPUT = "lasertest_unchanged"
 
 
 class LaserSession:
     """Collects pairs files, keeps a broken one from stopping the rest of the run, and sums up
     what the placement items found."""
 
-    def __init__(self, options: LaserOptions) -> None:
+    def __init__(self, options: LaserOptions, unchanged: Unchanged) -> None:
         self.options = options
         self.named_files = frozenset(options.pairs)
         self.broken_files = 0
         self.summary = Summary()
+        self.unchanged = unchanged
 
     def pytest_report_header(self, config: pytest.Config) -> str:
         artifacts = f", artifacts in {self.options.artifacts}" if self.options.artifacts else ""
@@ -57,21 +63,39 @@ class LaserSession:
         if report.when == "call":
             self.summary.add(report.nodeid, report.failed, report.user_properties)
 
+    @pytest.hookimpl(tryfirst=True)
+    def pytest_sessionfinish(self, session: pytest.Session, exitstatus: int) -> None:
+        workeroutput = getattr(session.config, "workeroutput", None)
+        if workeroutput is not None:
+            workeroutput[UNCHANGED_OUTPUT] = dict(self.unchanged.pairs)
+        if exitstatus == pytest.ExitCode.NO_TESTS_COLLECTED and self.unchanged.pairs:
+            # The gate ran and found nothing to test: an unrelated edit must pass CI.
+            session.exitstatus = pytest.ExitCode.OK
+
     def pytest_terminal_summary(self, terminalreporter: pytest.TerminalReporter) -> None:
         artifacts = str(self.options.artifacts) if self.options.artifacts else None
-        lines = self.summary.lines(artifacts)
-        if lines:
-            terminalreporter.section("lasertest: placements searched, per pair")
-            for line in lines:
-                terminalreporter.write_line(line)
+        sections = {
+            "lasertest: placements searched, per pair": self.summary.lines(artifacts),
+            "lasertest: pairs whose scanners read alike": self.unchanged.lines(),
+        }
+        for title, lines in sections.items():
+            if lines:
+                terminalreporter.section(title)
+                for line in lines:
+                    terminalreporter.write_line(line)
 
 
 class XdistHooks:
     """Hooks registered only when pytest-xdist is active."""
 
-    def __init__(self, seed_key: str) -> None:
+    def __init__(self, seed_key: str, unchanged: Unchanged) -> None:
         self.seed_key = seed_key
+        self.unchanged = unchanged
 
     def pytest_configure_node(self, node: Any) -> None:
         """Hand the controller's seed to each worker."""
         node.workerinput[self.seed_key] = node.config.stash[OPTIONS_KEY].seed
+
+    def pytest_testnodedown(self, node: Any, error: object) -> None:
+        """Take the pairs a worker collected to no items: the controller collects nothing."""
+        self.unchanged.merge(getattr(node, "workeroutput", {}).get(UNCHANGED_OUTPUT, {}))

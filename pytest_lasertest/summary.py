@@ -95,5 +95,28 @@ class Summary:
         return lines
 
 
+@dataclass
+class Unchanged:
+    """The pairs whose two scanners read alike, which collect to no items: pair id -> what both
+    scanners are."""
+
+    pairs: dict[str, str] = field(default_factory=dict)
+
+    def add(self, pair: str, scanners: str) -> None:
+        """Note one pair."""
+        self.pairs[pair] = scanners
+
+    def merge(self, other: Mapping[str, str]) -> None:
+        """Take the pairs a pytest-xdist worker noted (every worker notes the same)."""
+        self.pairs.update(other)
+
+    def lines(self) -> list[str]:
+        """One line per pair, in node-id order."""
+        return [
+            f"{pair}: no sensing change, no items: {self.pairs[pair]}"
+            for pair in sorted(self.pairs)
+        ]
+
+
 def _whole(value: object) -> int:
     return value if isinstance(value, int) else 0

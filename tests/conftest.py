@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
 from pathlib import Path
 from typing import Any
 
@@ -59,7 +61,7 @@ pairs:
       model: sick_lms111
   same:
     baseline: {model: hokuyo_ust_10lx}
-    candidate: {model: hokuyo_ust_10lx}
+    candidate: {model: hokuyo_ust_10lx, noise: {stddev: 0.01}}
 """
 
 
@@ -69,6 +71,24 @@ def pairs_file(pytester: pytest.Pytester) -> Path:
     path = pytester.path / "gate.lasertest.yaml"
     path.write_text(VALID_PAIRS)
     return path
+
+
+def git(directory: Path, *args: str) -> str:
+    """Run git with an argument list, without the user's configuration."""
+    done = subprocess.run(
+        ["git", "-c", "user.name=t", "-c", "user.email=t@t", "-C", str(directory), *args],
+        check=True,
+        capture_output=True,
+        env={**os.environ, "GIT_CONFIG_GLOBAL": os.devnull, "GIT_CONFIG_NOSYSTEM": "1"},
+    )
+    return done.stdout.decode().strip()
+
+
+def commit_everything(directory: Path) -> None:
+    """Make `directory` a repository (branch main) whose one commit holds all its files."""
+    git(directory, "-c", "init.defaultBranch=main", "init", "-q")
+    git(directory, "add", "-A")
+    git(directory, "commit", "-q", "-m", "everything")
 
 
 def profile(**overrides: Any) -> LaserProfile:

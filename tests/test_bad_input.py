@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import pytest
 
@@ -14,6 +15,16 @@ world: {start: {x: 0, y: 0}, goal: {x: 5, y: 0}, time_limit: 30}
 pairs:
   longer: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
 """
+
+
+class Expected(Protocol):
+    """What an error must say."""
+
+    @property
+    def problem(self) -> str: ...
+
+    @property
+    def fix(self) -> str: ...
 
 
 @dataclass(frozen=True)
@@ -282,16 +293,16 @@ CASES = {
         "make max_obstacle_size at least as large",
     ),
     "an empty placements list": Case(
-        "    candidate: {model: hokuyo_ust_10lx}\n",
-        "    candidate: {model: hokuyo_ust_10lx}\n    placements: []\n",
+        "    candidate: {model: hokuyo_ust_10lx, noise: {stddev: 0.01}}\n",
+        "    candidate: {model: hokuyo_ust_10lx, noise: {stddev: 0.01}}\n    placements: []\n",
         23,
         "pairs.same.placements",
         "the placements list is empty",
         "list at least one placement, or remove placements:",
     ),
     "a pinned obstacle of unknown shape": Case(
-        "    candidate: {model: hokuyo_ust_10lx}\n",
-        "    candidate: {model: hokuyo_ust_10lx}\n    placements:\n"
+        "    candidate: {model: hokuyo_ust_10lx, noise: {stddev: 0.01}}\n",
+        "    candidate: {model: hokuyo_ust_10lx, noise: {stddev: 0.01}}\n    placements:\n"
         "      - {obstacle: {shape: cone, x: 5, y: 0, radius: 0.1, height: 1}, seed: 0}\n",
         24,
         "pairs.same.placements[0].obstacle.shape",
@@ -313,7 +324,7 @@ def assert_one_clean_error(
     result: pytest.RunResult,
     line: int,
     field: str,
-    case: Case,
+    case: Expected,
     file: str = "gate.lasertest.yaml",
 ) -> None:
     """The run failed with exactly this error in `file`, and nothing of our code's insides

@@ -205,7 +205,7 @@ PLACEMENT_PAIRS = (
     + """\
   same:
     baseline: {model: clearpath_lms1xx_gazebo, samples: 32}
-    candidate: {model: clearpath_lms1xx_gazebo, samples: 32}
+    candidate: {model: clearpath_lms1xx_gazebo, samples: 32, noise: {stddev: 0.02}}
 """
 )
 

@@ -8,16 +8,22 @@ import shutil
 
 import pytest
 
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, commit_everything
 
 
 def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
     pytester: pytest.Pytester,
 ) -> None:
     shutil.copytree(EXAMPLES, pytester.path / "examples")
+    # A checkout: the CI gate example reads its description at HEAD.
+    commit_everything(pytester.path)
     # As CI runs the README's main job: the ci profile, on two workers.
     result = pytester.runpytest_subprocess(
         "examples", "-rA", "--laser-seed=1", "--laser-profile=ci", "-n", "2"
+    )
+    assert "errors" not in result.parseoutcomes()
+    result.stdout.fnmatch_lines(
+        ["examples/ci/gate.lasertest.yaml::front_laser: no sensing change, no items: *"]
     )
     failed = {line.split()[1] for line in result.stdout.lines if line.startswith("FAILED ")}
     assert {item for item in failed if not item.endswith("[coverage]")} == {

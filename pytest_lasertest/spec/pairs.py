@@ -14,6 +14,7 @@ from pytest_lasertest.robot import Robot
 from pytest_lasertest.spec.catalogue import Catalogue, load_catalogue
 from pytest_lasertest.spec.constraints import Constraint, read_constraints
 from pytest_lasertest.spec.controller import ControllerChoice, read_controller
+from pytest_lasertest.spec.described import DESCRIPTION_KEYS, is_described, read_described
 from pytest_lasertest.spec.errors import Location, SpecError
 from pytest_lasertest.spec.navigation import read_navigation
 from pytest_lasertest.spec.node import SpecNode, read_root
@@ -153,7 +154,16 @@ def _read_pair(name: str, node: SpecNode, catalogue: Catalogue, mount: Pose3D) -
 
 
 def _read_scanner(node: SpecNode, catalogue: Catalogue, mount: Pose3D) -> Scanner:
-    fields = read_fields(node, ("model", *PROFILE_KEYS, "pose"))
+    fields = read_fields(node, ("model", *DESCRIPTION_KEYS, *PROFILE_KEYS, "pose"))
+    if is_described(fields):
+        described = read_described(node, fields)
+        return Scanner(described.profile, None, described.label)
+    for key in DESCRIPTION_KEYS:
+        if key in fields:
+            raise fields[key].error(
+                f"`{key}:` belongs to a scanner read from a robot description",
+                "add `urdf: PATH` (or `sdf: PATH`) to read one, or drop it",
+            )
     model = fields.pop("model", None)
     if model is None:
         return Scanner(build_profile(fields, node, mount), None)

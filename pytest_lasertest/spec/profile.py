@@ -40,15 +40,17 @@ ALIAS_HINTS = {
 
 @dataclass(frozen=True)
 class Scanner:
-    """One side of a pair: a profile, and the catalogue model it started from, if any."""
+    """One side of a pair: a profile, and the catalogue model or the robot description it was
+    read from, if any."""
 
     profile: LaserProfile
     model: str | None
+    source: str | None = None  # the sensor, its description file and revision
 
     @property
     def label(self) -> str:
         """How reports name this scanner."""
-        return self.model or "inline profile"
+        return self.model or self.source or "inline profile"
 
 
 def read_fields(node: SpecNode, allowed: tuple[str, ...]) -> dict[str, SpecNode]:

@@ -1,0 +1,259 @@
+"""Laser scanners read from robot descriptions: URDF, xacro and SDFormat files.
+
+A description is read as written when it is plain XML, and expanded with xacro first when it
+uses xacro. Its lasers are Gazebo `<sensor>`s of a laser type: in URDF, `<gazebo
+reference="LINK">` blocks; in SDF, a model's links. Each comes with its profile fields, at the
+lines that wrote them, and its mount (`mounts.py`). When there is no laser, the error says why as
+far as the files show (`absent.py`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from pytest_lasertest.spec.absent import no_laser_error
+from pytest_lasertest.spec.errors import Location, SpecError
+from pytest_lasertest.spec.laser_block import (
+    Locate,
+    check_planar,
+    is_laser,
+    read_laser_block,
+    vertical_samples,
+)
+from pytest_lasertest.spec.mounts import Mount, sdf_mount, urdf_mount
+from pytest_lasertest.spec.node import SpecNode
+from pytest_lasertest.spec.xacro_expand import FileReader, expand_xacro
+from pytest_lasertest.spec.xmlfile import XmlElement, parse_xml
+
+
+@dataclass(frozen=True)
+class DescriptionFile:
+    """Which description to read, and how: where its files come from, xacro args, packages."""
+
+    path: Path
+    reader: FileReader
+    args: Mapping[str, str] = field(default_factory=dict)
+    packages: Mapping[str, Path] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class _Found:
+    """A laser `<sensor>` and the elements that carry it."""
+
+    sensor: XmlElement
+    link: str
+    models: tuple[XmlElement, ...]  # URDF: (robot,); SDF: the nested models, outermost first
+    link_element: XmlElement | None  # SDF only
+
+
+@dataclass(frozen=True)
+class Laser:
+    """One laser of a description. Its fields and mount are read when asked for, so that a
+    broken laser the pairs file does not choose breaks nothing."""
+
+    name: str
+    link: str
+    kind: str  # the <sensor> type: ray, gpu_ray, lidar or gpu_lidar
+    node: SpecNode  # the <sensor> element, where it was written
+    vertical_samples: SpecNode | None
+    _found: _Found
+    _locate: Locate
+
+    @property
+    def planar(self) -> bool:
+        """Whether it scans one plane (a 2D laser)."""
+        return self.vertical_samples is None or self.vertical_samples.value == 1
+
+    def check_planar(self) -> None:
+        """SpecError when it is a 3D lidar."""
+        check_planar(self.vertical_samples, self.name)
+
+    def fields(self) -> dict[str, SpecNode]:
+        """Its profile fields, each at the line that wrote it."""
+        return read_laser_block(self._found.sensor, self._locate)
+
+    def mount(self) -> Mount:
+        """Where it sits in the robot's base frame."""
+        found, locate = self._found, self._locate
+        if found.link_element is not None:
+            return sdf_mount(found.models, found.link_element, found.sensor, locate)
+        if not found.link:
+            raise locate(found.sensor).error(
+                'the sensor\'s <gazebo> block names no link (reference="...")',
+                'attach it to the laser\'s link: <gazebo reference="LINK">',
+            )
+        return urdf_mount(found.models[0], found.link, found.sensor, locate)
+
+
+def read_lasers(description: DescriptionFile) -> tuple[Laser, ...]:
+    """Every laser of a description; SpecError when it has none, saying why."""
+    document = _read(description)
+    found = (
+        _urdf_lasers(document.root) if document.root.tag == "robot" else _sdf_lasers(document.root)
+    )
+    if not found:
+        raise no_laser_error(document.path, document.root, document.sources)
+    return tuple(_laser(document, item) for item in found)
+
+
+def choose_laser(
+    lasers: tuple[Laser, ...], wanted: str | None, where: SpecNode, file: str
+) -> Laser:
+    """The laser `sensor:` names (a sensor's name, else its link's), or the only 2D one; errors
+    point at `where` and name the description `file`."""
+    if wanted is None:
+        planar = [laser for laser in lasers if laser.planar]
+        if not planar:
+            lasers[0].check_planar()
+        if len(planar) == 1:
+            return planar[0]
+        listing = ", ".join(f"{laser.name!r} (line {laser.node.location.line})" for laser in planar)
+        raise where.error(
+            f"{file} has {len(planar)} 2D lasers: {listing}",
+            "say which one the gate reads with `sensor: NAME`",
+        )
+    for key in ("name", "link"):
+        chosen = [laser for laser in lasers if getattr(laser, key) == wanted]
+        if len(chosen) == 1:
+            chosen[0].check_planar()
+            return chosen[0]
+    names = ", ".join(repr(laser.name) for laser in lasers)
+    raise where.error(
+        f"{file} has no laser sensor or link named {wanted!r}", f"its lasers: {names}"
+    )
+
+
+class _Document:
+    """A read description: the tree to search, and the files that wrote it."""
+
+    def __init__(
+        self, path: Path, root: XmlElement, sources: Mapping[Path, XmlElement | None]
+    ) -> None:
+        self.path = path
+        self.root = root
+        self.sources = {key: value for key, value in sources.items() if value is not None}
+        self.expanded = root is not self.sources.get(path)
+
+    def locator(self, sensor: XmlElement) -> Locate:
+        """Where to report an element: its own line in a plain file; in an expanded one, the
+        line that wrote it, as near as the written files show."""
+        name = sensor.get("name")
+        written = self._written_sensor(sensor) if self.expanded else None
+
+        def locate(element: XmlElement) -> SpecNode:
+            label = name if element is sensor else f"{name}: <{element.tag}>"
+            return SpecNode(None, self._location(element, sensor, written), label or "sensor")
+
+        return locate
+
+    def _location(
+        self, element: XmlElement, sensor: XmlElement, written: XmlElement | None
+    ) -> Location:
+        if not self.expanded:
+            return element.location
+        path = _path_to(sensor, element)
+        if written is not None and path is not None:
+            found: XmlElement | None = written
+            for tag in path:
+                found = found.child(tag) if found is not None else None
+            return (found or written).location
+        for root in self.sources.values():
+            for candidate in root.walk():
+                if candidate.tag == element.tag and candidate.get("name") == element.get("name"):
+                    return candidate.location
+        return Location(self.path, 1)
+
+    def _written_sensor(self, sensor: XmlElement) -> XmlElement | None:
+        """The `<sensor>` in the files whose expansion is `sensor`, when one can tell."""
+        written = [
+            element
+            for root in self.sources.values()
+            for element in root.walk()
+            if element.tag == "sensor" and (is_laser(element) or "$" in (element.get("type") or ""))
+        ]
+        named = [element for element in written if element.get("name") == sensor.get("name")]
+        if len(named) == 1:
+            return named[0]
+        if len(written) == 1:
+            return written[0]
+        templated = [element for element in written if "$" in (element.get("name") or "")]
+        return templated[0] if len(templated) == 1 else None
+
+
+def _path_to(top: XmlElement, element: XmlElement) -> tuple[str, ...] | None:
+    """The tags from `top` down to `element`, or None when it is not below `top`."""
+    if element is top:
+        return ()
+    for child in top.children:
+        below = _path_to(child, element)
+        if below is not None:
+            return (child.tag, *below)
+    return None
+
+
+def _read(description: DescriptionFile) -> _Document:
+    path, reader = description.path, description.reader
+    try:
+        data = reader.read(path)
+    except FileNotFoundError:
+        raise SpecError(
+            Location(path, 1),
+            "",
+            f"{reader.name(path)} does not exist",
+            "check the path (relative to the pairs file) and its spelling",
+        ) from None
+    root = parse_xml(data, path)
+    if not _uses_xacro(root, path):
+        return _Document(path, root, {path: root})
+    expansion = expand_xacro(path, reader, description.args, description.packages)
+    return _Document(path, expansion.root, expansion.sources)
+
+
+def _uses_xacro(root: XmlElement, path: Path) -> bool:
+    if path.name.endswith(".xacro") or "xmlns:xacro" in root.attributes:
+        return True
+    return any(element.tag.startswith("xacro:") for element in root.walk())
+
+
+def _urdf_lasers(robot: XmlElement) -> list[_Found]:
+    return [
+        _Found(sensor, gazebo.get("reference") or "", (robot,), None)
+        for gazebo in robot.all("gazebo")
+        for sensor in gazebo.all("sensor")
+        if is_laser(sensor)
+    ]
+
+
+def _sdf_lasers(root: XmlElement) -> list[_Found]:
+    tops = [*root.all("model"), *(m for world in root.all("world") for m in world.all("model"))]
+    return [found for model in tops for found in _model_lasers((model,))]
+
+
+def _model_lasers(models: tuple[XmlElement, ...]) -> list[_Found]:
+    model = models[-1]
+    found = [
+        _Found(sensor, link.get("name") or "", models, link)
+        for link in model.all("link")
+        for sensor in link.all("sensor")
+        if is_laser(sensor)
+    ]
+    for nested in model.all("model"):
+        found += _model_lasers((*models, nested))
+    return found
+
+
+def _laser(document: _Document, found: _Found) -> Laser:
+    sensor = found.sensor
+    locate = document.locator(sensor)
+    vertical = vertical_samples(sensor, locate)
+    return Laser(
+        name=sensor.get("name") or found.link,
+        link=found.link,
+        kind=sensor.get("type") or "",
+        node=locate(sensor),
+        vertical_samples=vertical,
+        _found=found,
+        _locate=locate,
+    )
