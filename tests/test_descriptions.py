@@ -420,7 +420,7 @@ def test_a_file_that_only_defines_the_laser_macro_says_nobody_calls_it(
     result = pytester.runpytest()
     result.stdout.fnmatch_lines(
         [
-            "lidar_pkg/front.xacro:3: no laser: the file only defines the xacro macro "
+            "lidar_pkg/front.xacro:3: no laser: the description only defines the xacro macro "
             "'front_laser' (line 3), which holds a laser sensor, and nothing calls it *",
             "  fix: point `urdf:` at the robot description that calls the macro, or at a file "
             "of your own that includes this one and calls <xacro:front_laser .../>",

@@ -16,8 +16,9 @@ from pytest_lasertest.spec.errors import Location, SpecError
 from pytest_lasertest.spec.laser_block import LASER_TYPES, is_laser
 from pytest_lasertest.spec.xmlfile import XmlElement
 
-# xacro args whose names suggest that they switch a laser on.
+# xacro args whose names suggest a laser, and among them those that switch something on.
 LASER_ARG = re.compile(r"laser|lidar|scan|lms|hokuyo|ust|sick", re.IGNORECASE)
+SWITCH_ARG = re.compile(r"enable|use_|with_|_on\b|visual", re.IGNORECASE)
 NO_LASER_FIX = (
     f"point `urdf:` at the robot description that holds the laser's <sensor> "
     f"(type {', '.join(LASER_TYPES)})"
@@ -43,8 +44,8 @@ def no_laser_error(path: Path, root: XmlElement, sources: Mapping[Path, XmlEleme
         return SpecError(
             macros[uncalled[0]].location,
             "",
-            f"no laser: the file only defines the xacro macro {names}, which holds a laser "
-            "sensor, and nothing calls it",
+            f"no laser: the description only defines the xacro macro {names}, which holds a "
+            "laser sensor, and nothing calls it",
             "point `urdf:` at the robot description that calls the macro, or at a file of your "
             f"own that includes this one and calls <xacro:{uncalled[0]} .../>",
         )
@@ -56,12 +57,13 @@ def _plain_reason(root: XmlElement, sources: Mapping[Path, XmlElement]) -> str:
     others = [e for e in root.walk() if e.tag == "sensor" and not is_laser(e)]
     if others:
         reason += ", only " + ", ".join(f"{e.get('type')} {e.get('name')!r}" for e in others)
-    switches = [
+    named = [
         arg
         for written in sources.values()
         for arg in written.walk()
         if arg.tag == "xacro:arg" and LASER_ARG.search(arg.get("name") or "")
     ]
+    switches = [arg for arg in named if SWITCH_ARG.search(arg.get("name") or "")] or named
     if switches:
         listed = ", ".join(f"{a.get('name')} (default {a.get('default')!r})" for a in switches)
         reason += (

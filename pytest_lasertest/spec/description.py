@@ -24,7 +24,7 @@ from pytest_lasertest.spec.laser_block import (
 )
 from pytest_lasertest.spec.mounts import Mount, sdf_mount, urdf_mount
 from pytest_lasertest.spec.node import SpecNode
-from pytest_lasertest.spec.xacro_expand import FileReader, expand_xacro
+from pytest_lasertest.spec.xacro_expand import FileReader, expand_xacro, origin
 from pytest_lasertest.spec.xmlfile import XmlElement, parse_xml
 
 
@@ -109,7 +109,7 @@ def choose_laser(
             lasers[0].check_planar()
         if len(planar) == 1:
             return planar[0]
-        listing = ", ".join(f"{laser.name!r} (line {laser.node.location.line})" for laser in planar)
+        listing = ", ".join(f"{laser.name!r} ({_place(laser, lasers)})" for laser in planar)
         raise where.error(
             f"{file} has {len(planar)} 2D lasers: {listing}",
             "say which one the gate reads with `sensor: NAME`",
@@ -119,10 +119,25 @@ def choose_laser(
         if len(chosen) == 1:
             chosen[0].check_planar()
             return chosen[0]
+        if chosen:
+            listing = ", ".join(
+                f"{laser.kind} at line {laser.node.location.line}" for laser in chosen
+            )
+            raise where.error(
+                f"{file} has {len(chosen)} lasers whose {key} is {wanted!r}: {listing}",
+                "give each laser its own sensor name, and choose one with `sensor: NAME`",
+            )
     names = ", ".join(repr(laser.name) for laser in lasers)
     raise where.error(
         f"{file} has no laser sensor or link named {wanted!r}", f"its lasers: {names}"
     )
+
+
+def _place(laser: Laser, lasers: tuple[Laser, ...]) -> str:
+    """`line 17` when every laser is written in one file, else `file:line`."""
+    if len({other.node.location.path for other in lasers}) == 1:
+        return f"line {laser.node.location.line}"
+    return str(laser.node.location)
 
 
 class _Document:
@@ -137,60 +152,20 @@ class _Document:
         self.expanded = root is not self.sources.get(path)
 
     def locator(self, sensor: XmlElement) -> Locate:
-        """Where to report an element: its own line in a plain file; in an expanded one, the
-        line that wrote it, as near as the written files show."""
-        name = sensor.get("name")
-        written = self._written_sensor(sensor) if self.expanded else None
+        """Where to report an element of a sensor: its own line in a plain file; in an
+        expanded one, the line of the file that wrote it."""
+        name = sensor.get("name") or "sensor"
 
         def locate(element: XmlElement) -> SpecNode:
             label = name if element is sensor else f"{name}: <{element.tag}>"
-            return SpecNode(None, self._location(element, sensor, written), label or "sensor")
+            return SpecNode(None, self._location(element), label)
 
         return locate
 
-    def _location(
-        self, element: XmlElement, sensor: XmlElement, written: XmlElement | None
-    ) -> Location:
+    def _location(self, element: XmlElement) -> Location:
         if not self.expanded:
             return element.location
-        path = _path_to(sensor, element)
-        if written is not None and path is not None:
-            found: XmlElement | None = written
-            for tag in path:
-                found = found.child(tag) if found is not None else None
-            return (found or written).location
-        for root in self.sources.values():
-            for candidate in root.walk():
-                if candidate.tag == element.tag and candidate.get("name") == element.get("name"):
-                    return candidate.location
-        return Location(self.path, 1)
-
-    def _written_sensor(self, sensor: XmlElement) -> XmlElement | None:
-        """The `<sensor>` in the files whose expansion is `sensor`, when one can tell."""
-        written = [
-            element
-            for root in self.sources.values()
-            for element in root.walk()
-            if element.tag == "sensor" and (is_laser(element) or "$" in (element.get("type") or ""))
-        ]
-        named = [element for element in written if element.get("name") == sensor.get("name")]
-        if len(named) == 1:
-            return named[0]
-        if len(written) == 1:
-            return written[0]
-        templated = [element for element in written if "$" in (element.get("name") or "")]
-        return templated[0] if len(templated) == 1 else None
-
-
-def _path_to(top: XmlElement, element: XmlElement) -> tuple[str, ...] | None:
-    """The tags from `top` down to `element`, or None when it is not below `top`."""
-    if element is top:
-        return ()
-    for child in top.children:
-        below = _path_to(child, element)
-        if below is not None:
-            return (child.tag, *below)
-    return None
+        return origin(element) or Location(self.path, 1)
 
 
 def _read(description: DescriptionFile) -> _Document:

@@ -22,11 +22,14 @@ from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Protocol
+from xml.sax.saxutils import quoteattr
 
 from pytest_lasertest.spec.errors import Location, SpecError
 from pytest_lasertest.spec.xmlfile import XmlElement, parse_xml
 
 XACRO_FIX = "run `xacro FILE` by hand to see the problem, then fix the description"
+# The attribute that marks each element xacro reads with the file and line that wrote it.
+ORIGIN = "lasertest-origin"
 
 
 class FileReader(Protocol):
@@ -104,10 +107,41 @@ def _opener(reader: FileReader, opened: dict[Path, XmlElement | None]) -> object
         path = Path(os.path.abspath(name))
         data = reader.read(path)
         # Only XML goes through the checks; a YAML file loaded by xacro.load_yaml does not.
-        opened[path] = parse_xml(data, path) if _looks_like_xml(data) else None
-        return io.BytesIO(data)
+        if not _looks_like_xml(data):
+            opened[path] = None
+            return io.BytesIO(data)
+        root = opened[path] = parse_xml(data, path)
+        return io.BytesIO(_with_origins(data, root))
 
     return open_for_xacro
+
+
+def _with_origins(data: bytes, root: XmlElement) -> bytes:
+    """The file with every plain element (not the root, not a xacro directive) marked with the
+    file and line that write it, in the attribute ORIGIN; xacro copies it through macros and
+    includes, so each expanded element still says where it was written."""
+    marks = sorted(
+        (
+            element.offset + 1 + len(element.tag.encode()),
+            f" {ORIGIN}={quoteattr(f'{element.location.path}:{element.location.line}')}",
+        )
+        for element in root.walk()
+        if element is not root and ":" not in element.tag
+    )
+    pieces, start = [], 0
+    for offset, mark in marks:
+        pieces += [data[start:offset], mark.encode()]
+        start = offset
+    return b"".join([*pieces, data[start:]])
+
+
+def origin(element: XmlElement) -> Location | None:
+    """Where the files xacro read write an element of its expansion, when they say."""
+    mark = element.get(ORIGIN)
+    if mark is None:
+        return None
+    path, _, line = mark.rpartition(":")
+    return Location(Path(path), int(line))
 
 
 def _looks_like_xml(data: bytes) -> bool:
@@ -174,15 +208,17 @@ def _first_name(message: str) -> str | None:
 def _where(
     path: Path | None, opened: Mapping[Path, XmlElement | None], needle: str | None
 ) -> Location:
-    """The first element of `path` whose tag, attributes or text hold `needle`: xacro reports
-    which file it was reading, never the line."""
+    """The first element whose tag, attributes or text hold `needle`: in `path` (the file
+    xacro was reading; it reports no lines), else in the other files it read (a macro's body
+    is evaluated where it is called, but written where it is defined)."""
     if path is None:
         return Location(Path("<xacro>"), 1)
-    root = opened.get(path)
-    if root is None or not needle:
+    if not needle:
         return Location(path, 1)
-    for element in root.walk():
-        written = " ".join([f"<{element.tag}", *element.attributes.values(), element.text])
-        if needle in written:
-            return element.location
+    others = [root for key, root in opened.items() if key != path]
+    for root in [opened.get(path), *others]:
+        for element in root.walk() if root is not None else ():
+            written = " ".join([f"<{element.tag}", *element.attributes.values(), element.text])
+            if needle in written:
+                return element.location
     return Location(path, 1)

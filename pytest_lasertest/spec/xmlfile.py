@@ -30,6 +30,7 @@ class XmlElement:
     text: str  # the element's own character data, comments left out
     children: tuple[XmlElement, ...]
     location: Location
+    offset: int = 0  # bytes from the start of the file to the element's `<`
 
     def get(self, name: str) -> str | None:
         """An attribute's value, or None."""
@@ -57,6 +58,7 @@ class _Open:
     tag: str
     attributes: dict[str, str]
     line: int
+    offset: int
     text: list[str] = field(default_factory=list)
     children: list[XmlElement] = field(default_factory=list)
 
@@ -71,7 +73,8 @@ class _Builder:
         self.root: XmlElement | None = None
 
     def start(self, tag: str, attributes: dict[str, str]) -> None:
-        self.stack.append(_Open(tag, attributes, self.parser.CurrentLineNumber))
+        parser = self.parser
+        self.stack.append(_Open(tag, attributes, parser.CurrentLineNumber, parser.CurrentByteIndex))
 
     def end(self, tag: str) -> None:
         done = self.stack.pop()
@@ -81,6 +84,7 @@ class _Builder:
             "".join(done.text),
             tuple(done.children),
             Location(self.path, done.line),
+            done.offset,
         )
         if self.stack:
             self.stack[-1].children.append(element)
