@@ -17,7 +17,7 @@ from pytest_lasertest.sensor import LaserProfile
 # hypothesis, pytest_lasertest.collect and the solver (with z3) are imported only to stay loaded
 # across pytester runs: in-process runs drop the modules they imported, numpy cannot be imported
 # twice in one process, and Hypothesis's plugin would re-import hypothesis on every run.
-pytest_plugins = ["pytester"]
+pytest_plugins = ["pytester", "tests.corpus"]
 
 REPO = Path(__file__).resolve().parents[1]
 EXAMPLES = REPO / "examples"

@@ -20,7 +20,7 @@ from pytest_lasertest.geometry import Pose3D
 from pytest_lasertest.sensor import GaussianNoise, LaserProfile
 from tests.conftest import profile
 
-HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.30795), (3.14159, 0.0, 0.0))
+HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.44023), (3.14159, 0.0, 0.0))
 PAPER_SIZE = 0.0507  # m, the paper's "size" pole
 MAX_SPEED = 1.0  # m/s
 
@@ -161,7 +161,7 @@ def test_widening_the_field_of_view_with_the_same_samples_gains_sectors_but_spre
         pytest.param(husky(range_min=0.05), "range.min", False, id="lower-range-min"),
         pytest.param(husky(range_max=20.0), "range.max", False, id="longer-range"),
         pytest.param(
-            husky(pose=Pose3D((0.337, 0.1, 0.30795), HUSKY_MOUNT.rpy)),
+            husky(pose=Pose3D((0.337, 0.1, 0.44023), HUSKY_MOUNT.rpy)),
             "mount position",
             False,
             id="moved-sideways",
@@ -181,7 +181,7 @@ def test_each_changed_attribute_is_reported_once_and_is_worse_only_if_it_blinds_
 
 
 def test_a_scanner_moved_sideways_reports_how_far_it_moved() -> None:
-    moved = husky(pose=Pose3D((0.337, 0.1, 0.30795), HUSKY_MOUNT.rpy))
+    moved = husky(pose=Pose3D((0.337, 0.1, 0.44023), HUSKY_MOUNT.rpy))
 
     [change] = compare(husky(), moved).changes
 

@@ -40,8 +40,8 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
         # a 5 cm box, and moved a few centimetres along the route the 16-beam robot drives
         # into it while the 32-beam robot passes.
         "examples/paper.lasertest.yaml::size[candidate-misses-2]",
-        # Boxes and a pole 0.328 m high on the last leg: below the TiM571's raised scan plane
-        # (0.408 m), so the candidate drives into each; the LMS111 reads them and passes.
+        # Boxes and a pole 0.460 m high on the last leg: below the TiM571's raised scan plane
+        # (0.540 m), so the candidate drives into each; the LMS111 reads them and passes.
         *(
             f"examples/husky.lasertest.yaml::lms111_to_tim571_raised[candidate-misses-{index}]"
             for index in range(3)
@@ -89,7 +89,7 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
             "    beam spacing: 0.10129 -> 0.209333 rad; a 0.051 m wide obstacle is sure to be",
         ),
         ("lms111_to_tim571_raised", "    update_rate: 50 -> 15 Hz; a scan every 66.7 ms"),
-        ("lms111_to_tim571_raised", "    scan height: 0.30795 -> 0.40795 m; scan plane raised"),
+        ("lms111_to_tim571_raised", "    scan height: 0.44023 -> 0.54023 m; scan plane raised"),
     ]:
         section = output.split(f" {pair}[coverage] ")[1]
         assert loss in section.split("  other changes:")[0].split("  replay")[0]

@@ -19,8 +19,9 @@ from pytest_lasertest.artifacts.repro import repro_yaml, write_repro
 from pytest_lasertest.geometry import Box, Cylinder, Obstacle
 from pytest_lasertest.spec import SpecError, load_pairs_file
 from pytest_lasertest.spec.placements import PinnedPlacement, obstacle_fields
-from tests.conftest import EXAMPLES, VALID_PAIRS
+from tests.conftest import EXAMPLES, VALID_PAIRS, commit_everything
 from tests.test_bad_input import MY_ROBOT
+from tests.test_descriptions import PAIRS, ROBOT
 from tests.test_pinned_placements import (
     HEADER,
     RECORDED,
@@ -266,3 +267,29 @@ def test_a_repro_that_cannot_be_made_writes_nothing(tmp_path: Path) -> None:
     with pytest.raises(SpecError):
         write_repro(destination, original, pair, pinned_for(pair), HEADER)
     assert not destination.parent.exists()
+
+
+def test_a_scanner_read_from_a_description_is_pinned_as_the_profile_it_read(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / "robot.urdf").write_text(ROBOT)
+    pairs = tmp_path / "gate.lasertest.yaml"
+    pairs.write_text(PAIRS)
+    commit_everything(tmp_path)
+    (tmp_path / "robot.urdf").write_text(
+        ROBOT.replace("<samples>32</samples>", "<samples>16</samples>")
+    )
+    original = load_pairs_file(pairs)
+    pair = pair_named(original, "swap")
+    destination = tmp_path / "elsewhere" / "swap.lasertest.yaml"
+    text = repro_yaml(original, pair, pinned_for(pair), destination, ())
+    assert text.startswith("# baseline: front in robot.urdf at HEAD (")
+    assert "urdf" not in yaml.safe_load(text)["pairs"]["swap"]["candidate"]
+    # The description moves on; the repro keeps what was read.
+    (tmp_path / "robot.urdf").unlink()
+    destination.parent.mkdir()
+    destination.write_text(text)
+    replayed = pair_named(load_pairs_file(destination), "swap")
+    assert replayed.baseline.profile == pair.baseline.profile
+    assert replayed.candidate.profile == pair.candidate.profile
+    assert replayed.candidate.profile.samples == 16

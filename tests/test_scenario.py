@@ -142,7 +142,7 @@ def test_a_run_collides_only_where_its_clearance_reaches_zero(tmp_path: Path) ->
     pairs = tmp_path / "size.lasertest.yaml"
     pairs.write_text(SIZE_PAIR)
     spec = load_pairs_file(pairs)
-    box = Box(4.530794013521309, -0.31299598647869104, 0.0, 0.0507, 0.0507, 0.32737598647869104)
+    box = Box(4.530794013521309, -0.31299598647869104, 0.0, 0.0507, 0.0507, 0.45961598647869104)
     margins = []
     for seed in range(4):
         run = drive(spec, spec.pairs[0].candidate.profile, (box,), seed, ReactiveController)
@@ -230,7 +230,7 @@ def test_a_pole_the_lms111_passes_nearer_than_its_range_min_still_keeps_it_clear
     # laser it reads -inf, which the controller keeps as something at range_min.
     husky = load_pairs_file(EXAMPLES / "husky.lasertest.yaml")
     lms111 = next(p for p in husky.pairs if p.name == "lms111_to_tim571_raised").baseline.profile
-    pole = Cylinder(6.207, 3.410, 0.02535, 0.328)
+    pole = Cylinder(6.207, 3.410, 0.02535, 0.460)
     world = husky.world
     for seed in range(3):
         past_the_pole = Scenario(husky.robot, lms111, (pole,), world.start, world.route, 40.0, seed)

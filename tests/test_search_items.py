@@ -41,7 +41,7 @@ def test_a_failure_found_by_perturbing_the_witness_is_shrunk_and_reported(
             "the candidate fails (collision and goal) near witness candidate-misses-2: a "
             "regression: the baseline passes where the candidate fails",
             "  oracle     collision: collided at t = * s (margin -* mm)",
-            "  witness    box 0.051 x 0.051 m, yaw 0.393 rad, at (7.584, 0.306) m, 0.326 m high",
+            "  witness    box 0.051 x 0.051 m, yaw 0.393 rad, at (7.584, 0.306) m, 0.458 m high",
             "  minimal    box * m high",
             "  change     x +0.0* m (the smallest the search found that fails)",
             "    baseline  beam * read it, * mm deep",

@@ -123,7 +123,7 @@ def test_identical_scanners_are_proven_to_have_no_witness() -> None:
 
 def test_a_raised_scanner_misses_a_low_obstacle_the_lower_one_reads() -> None:
     base = scene("size").baseline
-    raised = dataclasses.replace(base, pose=Pose3D((0.337, 0.0, 0.45), (math.pi, 0.0, 0.0)))
+    raised = dataclasses.replace(base, pose=Pose3D((0.337, 0.0, 0.55), (math.pi, 0.0, 0.0)))
     plan = plan_direction(
         dataclasses.replace(scene("size"), candidate=raised), "candidate-misses", SETTINGS
     )

@@ -11,7 +11,7 @@ from pytest_lasertest.spec import SpecError, load_pairs_file
 from pytest_lasertest.spec.catalogue import load_catalogue
 from tests.conftest import EXAMPLES, VALID_PAIRS
 
-HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.30795), (3.14159, 0.0, 0.0))
+HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.44023), (3.14159, 0.0, 0.0))
 
 
 def write(tmp_path: Path, text: str) -> Path:

@@ -2,12 +2,14 @@
 
 It is the user's own pairs file cut down to the failing case: the robot, world, controller and
 navigation sections and the pair's two scanners are copied as written (so `model:` overrides read
-as the user wrote them), and the placement is pinned. Committed, it replays the failure as a
-regression test on every run.
+as the user wrote them), and the placement is pinned. A scanner read from a robot description is
+written out as the profile it read: its file moves on, and its `ref:` (a branch) moves too.
+Committed, the repro replays the failure as a regression test on every run.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Sequence
 from pathlib import Path
@@ -19,6 +21,7 @@ from pytest_lasertest.spec.bundled import bundled_robots
 from pytest_lasertest.spec.errors import Location, SpecError, display_path
 from pytest_lasertest.spec.pairs import Pair, PairsFile
 from pytest_lasertest.spec.placements import PinnedPlacement, obstacle_fields
+from pytest_lasertest.spec.profile import Scanner
 from pytest_lasertest.spec.yamlfile import read_text
 
 # Settings and constraints only steer the solver, which a pinned placement never asks.
@@ -46,7 +49,11 @@ def repro_yaml(
     document = {key: written[key] for key in COPIED_SECTIONS if key in written}
     document["robot"] = _robot_from(str(written["robot"]), spec.path, destination)
     document["pairs"] = {pair.name: _pair_mapping(written, pair, pinned)}
-    notes = [*header, *_controller_notes(written.get("controller"), spec.path, destination)]
+    notes = [
+        *header,
+        *_described_notes(pair),
+        *_controller_notes(written.get("controller"), spec.path, destination),
+    ]
     body = yaml.dump(
         document,
         Dumper=_ReproDumper,
@@ -97,10 +104,33 @@ def _pair_mapping(
     if pinned.direction is not None:
         placement["direction"] = pinned.direction
     return {
-        "baseline": sides["baseline"],
-        "candidate": sides["candidate"],
+        "baseline": _scanner(sides["baseline"], pair.baseline),
+        "candidate": _scanner(sides["candidate"], pair.candidate),
         "placements": [placement],
     }
+
+
+def _scanner(written: object, scanner: Scanner) -> object:
+    """The scanner as written, or, read from a description, the profile it read."""
+    if scanner.source is None:
+        return written
+    profile = scanner.profile
+    fields: dict[str, object] = {
+        "samples": profile.samples,
+        "resolution": profile.resolution,
+        "min_angle": profile.min_angle,
+        "max_angle": profile.max_angle,
+        "range": {
+            "min": profile.range_min,
+            "max": profile.range_max,
+            "resolution": profile.range_resolution,
+        },
+        "update_rate": profile.update_rate,
+        "pose": {"xyz": list(profile.pose.xyz), "rpy": list(profile.pose.rpy)},
+    }
+    if profile.noise is not None:
+        fields["noise"] = {"type": "gaussian", **dataclasses.asdict(profile.noise)}
+    return fields
 
 
 def _robot_from(name: str, original: Path, destination: Path) -> str:
@@ -112,6 +142,15 @@ def _robot_from(name: str, original: Path, destination: Path) -> str:
     relative = Path(os.path.relpath(target, destination.parent.resolve())).as_posix()
     # A relative path that reads as a bundled name would load the bundled robot instead.
     return f"./{relative}" if relative in bundled_robots() else relative
+
+
+def _described_notes(pair: Pair) -> list[str]:
+    """Where the scanners read from descriptions came from."""
+    return [
+        f"{side}: {scanner.source}, pinned as read"
+        for side, scanner in (("baseline", pair.baseline), ("candidate", pair.candidate))
+        if scanner.source is not None
+    ]
 
 
 def _controller_notes(controller: object, original: Path, destination: Path) -> list[str]:

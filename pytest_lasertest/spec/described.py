@@ -16,7 +16,7 @@ from pytest_lasertest.spec.errors import SpecError
 from pytest_lasertest.spec.gitref import GitError
 from pytest_lasertest.spec.node import SpecNode
 from pytest_lasertest.spec.profile import REQUIRED, build_profile
-from pytest_lasertest.spec.readers import WorkingTree, reader_at
+from pytest_lasertest.spec.readers import AtRevision, WorkingTree, reader_at
 from pytest_lasertest.spec.xacro_expand import FileReader
 
 DESCRIPTION_KEYS = ("urdf", "sdf", "ref", "sensor", "args", "packages")
@@ -67,7 +67,9 @@ def read_described(node: SpecNode, fields: dict[str, SpecNode]) -> DescribedLase
         profile = laser_profile(laser, fields)
     except SpecError as error:
         raise _in_context(error, file_node) from None
-    return DescribedLaser(profile, f"{laser.name} in {reader.name(description.path)}")
+    # Named as the pairs file writes it, which reads the same from any working directory.
+    revision = f" at {reader.revision.label}" if isinstance(reader, AtRevision) else ""
+    return DescribedLaser(profile, f"{laser.name} in {file_node.value}{revision}")
 
 
 def laser_profile(laser: Laser, overrides: Mapping[str, SpecNode]) -> LaserProfile:

@@ -10,17 +10,15 @@ model frame is the base. SDF joint poses do not move links, so they are not read
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 from pytest_lasertest.geometry import Pose3D
-from pytest_lasertest.spec.node import SpecNode
+from pytest_lasertest.spec.laser_block import Locate
 from pytest_lasertest.spec.xmlfile import XmlElement
 
 FOOTPRINT = "base_footprint"
 POSE_FIX = "write six numbers: x y z (m) roll pitch yaw (rad)"
-
-Locate = Callable[[XmlElement], SpecNode]
 
 
 @dataclass(frozen=True)

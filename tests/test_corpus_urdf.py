@@ -1,6 +1,8 @@
 """Real, public robot descriptions: each one parses to the profile its answer key gives, or fails
 with a message that says exactly why (a package the pairs file does not map, a macro nothing
-calls, a Gazebo fragment, a 3D lidar, a sensor without an update rate).
+calls, a Gazebo fragment, a 3D lidar, a sensor without an update rate). This module tests the
+copies themselves and the xacro/URDF files (F01-F06, F14-F16, F19, F20); test_corpus_sdf.py tests
+the SDF files (F17, F18, F21, F22).
 
 The files are unmodified copies in tests/data/corpus (sources, commits and licences in its
 README.md); the values are those of the corpus answer key (its sections 2 and 3), quoted below by
@@ -10,228 +12,62 @@ tests/data/stubs, assembled with the corpus files into one directory per ROS pac
 F07-F13 (hildebrandt-carl/AutoLaserTestGen) are not here: that repository declares no licence, so
 its files cannot be copied. The paper's parameter sets they carry (F07's macro variants, the
 F11-F13 results) are covered by examples/paper.lasertest.yaml and its tests.
+
+The paths, the answer key's tables, the helpers and the fixtures both modules use are in
+tests/corpus.py.
 """
 
 from __future__ import annotations
 
 import hashlib
-import os
-import shutil
-from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
 
 from pytest_lasertest.geometry import Pose3D
-from pytest_lasertest.profile_report import ReadProfile, read_profile
 from pytest_lasertest.sensor import GaussianNoise, LaserProfile
 from pytest_lasertest.spec.catalogue import load_catalogue
-from pytest_lasertest.spec.description import DescriptionFile, Laser, read_lasers
-from pytest_lasertest.spec.errors import SpecError
-from pytest_lasertest.spec.readers import WorkingTree
-
-DATA = Path(__file__).resolve().parent / "data"
-CORPUS = DATA / "corpus"
-STUBS = DATA / "stubs"
-
-HUSKY_NOETIC = CORPUS / "husky/noetic-devel/husky_description"
-HUSKY_KINETIC = CORPUS / "husky/kinetic-devel/husky_description"
-LMS1XX = CORPUS / "LMS1xx/noetic-devel"  # the lms1xx ROS package: the repository is the package
-TURTLEBOT3 = CORPUS / "turtlebot3/noetic/turtlebot3_description"
-JACKAL = CORPUS / "jackal/noetic-devel/jackal_description"
-GAZEBO_PLUGINS = CORPUS / "gazebo_ros_pkgs/noetic-devel/gazebo_plugins"
-
-F01 = HUSKY_NOETIC / "urdf/husky.urdf.xacro"
-F02 = HUSKY_NOETIC / "urdf/accessories/sick_lms1xx_mount.urdf.xacro"
-F03 = HUSKY_NOETIC / "urdf/accessories/hokuyo_ust10.urdf.xacro"
-F04 = HUSKY_KINETIC / "urdf/husky.urdf.xacro"
-F05 = HUSKY_KINETIC / "urdf/accessories/sick_lms1xx_mount.urdf.xacro"
-F06 = LMS1XX / "urdf/sick_lms1xx.urdf.xacro"
-F14 = TURTLEBOT3 / "urdf/turtlebot3_burger.gazebo.xacro"
-F15 = TURTLEBOT3 / "urdf/turtlebot3_burger.urdf.xacro"
-F16 = TURTLEBOT3 / "urdf/turtlebot3_waffle.gazebo.xacro"
-F17 = CORPUS / "turtlebot3_simulations/main/turtlebot3_gazebo/models/turtlebot3_burger/model.sdf"
-F18 = (
-    CORPUS / "turtlebot3_simulations/noetic-devel/turtlebot3_gazebo/models/turtlebot3_burger"
-    "/model.sdf"
+from tests.corpus import (
+    CORPUS,
+    EXACT,
+    F01,
+    F02,
+    F03,
+    F04,
+    F05,
+    F06,
+    F14,
+    F15,
+    F16,
+    F17,
+    F19,
+    F20,
+    GAZEBO_PLUGINS,
+    HUSKY_LASERS,
+    HUSKY_NOETIC,
+    JACKAL,
+    LMS1XX,
+    LMS1XX_MOUNT_CALL,
+    STUBS,
+    TURTLEBOT3,
+    Description,
+    assert_at,
+    assert_profile,
+    clearpath_laser,
+    error_of,
+    lasers,
+    lds_01,
+    on_husky,
+    read,
+    sha256sums,
+    wrapper,
 )
-F19 = JACKAL / "urdf/accessories/hokuyo_utm30.urdf.xacro"
-F20 = GAZEBO_PLUGINS / "test/multi_robot_scenario/xacro/laser/hokuyo_gpu.xacro"
-F21 = CORPUS / "sdformat/main/test/sdf/sensors.sdf"
-F22 = CORPUS / "gz-sim/main/examples/worlds/export_occupancy_grid.sdf"
 
-# The packages the husky accessories include unconditionally (flir_blackfly_mount, vlp16_mount),
-# as stand-ins: none of them holds a 2D laser.
-STUB_PACKAGES = {
-    name: STUBS / name
-    for name in ("velodyne_description", "fath_pivot_mount_description", "flir_camera_description")
-}
-# The answer key gives the husky mounts in base_link; the gate composes them into base_footprint,
-# which husky.urdf.xacro puts wheel_vertical_offset - wheel_radius = 0.03282 - 0.1651 below it.
-HUSKY_FOOTPRINT_DEPTH = 0.1651 - 0.03282  # m, 0.13228
-ROLL_UPSIDE_DOWN = 3.14159  # husky.urdf.xacro's M_PI, not math.pi
-# xacro's $(optenv VAR default) reads these; a developer's robot setup must not switch lasers on.
-ROBOT_ENVIRONMENT = ("HUSKY_", "JACKAL_", "CPR_", "OUTDOORNAV_", "ROBOT_NAMESPACE", "GAZEBO_WORLD_")
-EXACT = 1e-6  # m and rad: the mounts are sums of a few literals
-
-
-@dataclass(frozen=True)
-class Description:
-    """A top description file and the packages its `$(find)`s need."""
-
-    path: Path
-    packages: Mapping[str, Path]
-
-    def read(self, *, sensor: str | None = None, **args: str) -> ReadProfile:
-        """The laser the gate reads from it, with xacro args NAME=VALUE."""
-        return read_profile(self.path, sensor=sensor, ref=None, args=args, packages=self.packages)
-
-    def error(self, *, sensor: str | None = None, **args: str) -> SpecError:
-        """The error reading it raises."""
-        with pytest.raises(SpecError) as caught:
-            self.read(sensor=sensor, **args)
-        return caught.value
-
-
-@pytest.fixture(autouse=True)
-def _no_robot_environment(monkeypatch: pytest.MonkeyPatch) -> None:
-    for name in list(os.environ):
-        if name.startswith(ROBOT_ENVIRONMENT):
-            monkeypatch.delenv(name, raising=False)
-
-
-@pytest.fixture(scope="module")
-def packages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
-    """Each ROS package whose corpus files need stand-ins, as one directory: the corpus files
-    and the stubs copied together, as a checkout of the package would hold them."""
-    root = tmp_path_factory.mktemp("packages")
-    assembled = {}
-    for key, corpus, stub in (
-        ("husky_noetic", HUSKY_NOETIC, "husky_description"),
-        ("husky_kinetic", HUSKY_KINETIC, "husky_description"),
-        ("turtlebot3_description", TURTLEBOT3, "turtlebot3_description"),
-    ):
-        directory = root / key / corpus.name
-        for source in (corpus, STUBS / stub):
-            shutil.copytree(source, directory, dirs_exist_ok=True, copy_function=shutil.copyfile)
-        assembled[key] = directory
-    return assembled
-
-
-def husky_packages(husky_description: Path) -> dict[str, Path]:
-    return {"husky_description": husky_description, "lms1xx": LMS1XX, **STUB_PACKAGES}
-
-
-@pytest.fixture(scope="module")
-def husky(packages: dict[str, Path]) -> Description:
-    """F01 in its assembled husky_description (noetic-devel)."""
-    package = packages["husky_noetic"]
-    return Description(package / "urdf/husky.urdf.xacro", husky_packages(package))
-
-
-@pytest.fixture(scope="module")
-def husky_kinetic(packages: dict[str, Path]) -> Description:
-    """F04 in its assembled husky_description (kinetic-devel)."""
-    package = packages["husky_kinetic"]
-    return Description(package / "urdf/husky.urdf.xacro", husky_packages(package))
-
-
-@pytest.fixture(scope="module")
-def turtlebot3_burger(packages: dict[str, Path]) -> Description:
-    """F15 in its assembled turtlebot3_description."""
-    package = packages["turtlebot3_description"]
-    return Description(
-        package / "urdf/turtlebot3_burger.urdf.xacro", {"turtlebot3_description": package}
-    )
-
-
-def read(path: Path, **packages: Path) -> ReadProfile:
-    """The laser of a corpus file (or a wrapper) that needs no xacro args."""
-    return Description(path, packages).read()
-
-
-def error_of(path: Path, packages: Mapping[str, Path], *, sensor: str | None = None) -> SpecError:
-    return Description(path, packages).error(sensor=sensor)
-
-
-def lasers(path: Path) -> tuple[Laser, ...]:
-    return read_lasers(DescriptionFile(path, WorkingTree()))
-
-
-def wrapper(directory: Path, body: str) -> Path:
-    """A robot file of the user's own that includes a corpus macro file and calls its macro."""
-    path = directory / "robot.urdf.xacro"
-    path.write_text(
-        '<?xml version="1.0"?>\n<robot name="mine" xmlns:xacro="http://ros.org/wiki/xacro">\n'
-        f"{body}\n</robot>\n"
-    )
-    return path
-
-
-def clearpath_laser(
-    xyz: tuple[float, float, float], rpy: tuple[float, float, float]
-) -> LaserProfile:
-    """The ray block F06 (LMS1xx) and F03 (UST10) share: their macros' defaults."""
-    return LaserProfile(
-        samples=720,
-        resolution=1,
-        min_angle=-2.35619,
-        max_angle=2.35619,
-        range_min=0.1,
-        range_max=30.0,
-        range_resolution=0.01,
-        update_rate=50,
-        noise=GaussianNoise(mean=0.0, stddev=0.001),
-        pose=Pose3D(xyz, rpy),
-    )
-
-
-def on_husky(
-    in_base_link: tuple[float, float, float], rpy: tuple[float, float, float]
-) -> LaserProfile:
-    """A husky laser at the answer key's base_link mount, as the gate reads it (base_footprint)."""
-    x, y, z = in_base_link
-    return clearpath_laser((x, y, z + HUSKY_FOOTPRINT_DEPTH), rpy)
-
-
-def lds_01(xyz: tuple[float, float, float], max_angle: float) -> LaserProfile:
-    """The TurtleBot3 burger's LDS-01 as its Gazebo descriptions write it (F14-F18)."""
-    return LaserProfile(
-        samples=360,
-        resolution=1,
-        min_angle=0.0,
-        max_angle=max_angle,
-        range_min=0.12,
-        range_max=3.5,
-        range_resolution=0.015,
-        update_rate=5,
-        noise=GaussianNoise(mean=0.0, stddev=0.01),
-        pose=Pose3D(xyz),
-    )
-
-
-def assert_profile(got: ReadProfile, expected: LaserProfile, base: str) -> None:
-    """Every profile field equal (the files write them as literals), the mount within 1e-6, in
-    the frame `base`."""
-    level = Pose3D()
-    assert replace(got.profile, pose=level) == replace(expected, pose=level)
-    assert got.profile.pose.xyz == pytest.approx(expected.pose.xyz, abs=EXACT)
-    assert got.profile.pose.rpy == pytest.approx(expected.pose.rpy, abs=EXACT)
-    assert got.laser.mount().base == base
-
-
-def assert_at(error: SpecError, path: Path, line: int) -> None:
-    assert (error.location.path, error.location.line) == (path, line), str(error)
+pytestmark = pytest.mark.usefixtures("no_robot_environment")
 
 
 # --- the copies ------------------------------------------------------------------------------
-
-
-def sha256sums() -> Iterator[tuple[str, str]]:
-    for line in (CORPUS / "SHA256SUMS").read_text().splitlines():
-        digest, name = line.split(maxsplit=1)
-        yield digest, name
 
 
 def test_the_corpus_copies_are_byte_for_byte_the_published_files() -> None:
@@ -262,60 +98,6 @@ def test_every_corpus_file_and_stub_has_a_licence_or_says_it_is_a_stand_in() -> 
 
 
 # --- F01: husky noetic-devel -----------------------------------------------------------------
-
-HUSKY_LASERS = {
-    # id: (xacro args, sensor, laser name, answer key's base_link xyz, rpy)
-    "F01a-lms1xx-front-on-its-tower": (
-        {"laser_enabled": "1"},
-        None,
-        "front_laser",
-        (0.337, 0.0, 0.30795),
-        (ROLL_UPSIDE_DOWN, 0.0, 0.0),
-    ),
-    "F01a-prime-lms1xx-front-without-tower": (
-        {"laser_enabled": "1", "laser_tower": "0"},
-        None,
-        "front_laser",
-        (0.3568, 0.0, 0.28785),
-        (0.0, 0.0, 0.0),
-    ),
-    "F01b-lms1xx-rear": (
-        {"laser_secondary_enabled": "1"},
-        None,
-        "rear_laser",
-        # y: ~9e-8, because the mount turns by 3.14159, not pi
-        (-0.1746, 0.0, 0.30795),
-        (ROLL_UPSIDE_DOWN, 0.0, 3.14159),
-    ),
-    "F01c-ust10-front": (
-        {"laser_ust10_front_enabled": "1"},
-        None,
-        "front_laser",
-        (0.3018, 0.0, 0.29875),
-        (0.0, 0.0, 0.0),
-    ),
-    "F01d-ust10-rear": (
-        {"laser_ust10_rear_enabled": "1"},
-        None,
-        "rear_laser",
-        (-0.1394, 0.0, 0.29875),
-        (0.0, 0.0, 3.14159),
-    ),
-    "F01ab-sensor-picks-the-rear": (
-        {"laser_enabled": "1", "laser_secondary_enabled": "1"},
-        "rear_laser",
-        "rear_laser",
-        (-0.1746, 0.0, 0.30795),
-        (ROLL_UPSIDE_DOWN, 0.0, 3.14159),
-    ),
-    "F01ab-sensor-picks-the-front": (
-        {"laser_enabled": "1", "laser_secondary_enabled": "1"},
-        "front_laser",
-        "front_laser",
-        (0.337, 0.0, 0.30795),
-        (ROLL_UPSIDE_DOWN, 0.0, 0.0),
-    ),
-}
 
 
 @pytest.mark.parametrize(
@@ -563,17 +345,6 @@ def test_the_lms1xx_macro_called_with_its_defaults_reads_as_the_answer_key_says(
     assert_profile(got, clearpath_laser((0.2, 0.0, 0.3), (0.0, 0.0, 0.0)), "base_link")
 
 
-LMS1XX_MOUNT_CALL = (
-    '  <xacro:include filename="$(find husky_description)/urdf/accessories/'
-    'sick_lms1xx_mount.urdf.xacro"/>\n'
-    '  <link name="base_link"/>\n'
-    '  <xacro:sick_lms1xx_mount prefix="front" parent="base_link" topic="scan"'
-    ' robot_namespace="/">\n'
-    '    <origin xyz="0 0 0" rpy="0 0 0"/>\n'
-    "  </xacro:sick_lms1xx_mount>"
-)
-
-
 def test_the_lms1xx_mount_called_without_m_pi_names_m_pi(tmp_path: Path) -> None:
     # F02 row: standalone expansion fails, M_PI is only defined in F01/F04.
     path = wrapper(tmp_path, LMS1XX_MOUNT_CALL)
@@ -659,127 +430,3 @@ def test_the_turtlebot3_burger_places_its_lds_above_base_footprint(
     written = got.laser.node.location
     gazebo = packages["turtlebot3_description"] / F14.relative_to(TURTLEBOT3)
     assert (written.path, written.line) == (gazebo, 104)
-
-
-# --- F17, F18, F22: SDF models and worlds ----------------------------------------------------
-
-
-@pytest.mark.parametrize(
-    ("path", "kind", "link", "line", "update_rate"),
-    [(F17, "gpu_lidar", "base_scan", 135, 5), (F18, "ray", "lidar", 94, 1800)],
-    ids=["F17-main-lidar-crlf", "F18-noetic-ray"],
-)
-def test_the_turtlebot3_burger_sdf_places_its_lds_in_the_model_frame(
-    path: Path, kind: str, link: str, line: int, update_rate: int
-) -> None:
-    # The link has no <pose>; the sensor's <pose> is the mount. The lidar_joint's pose does not
-    # move the link, and the IMU's <update_rate>200 (F17) is not the scan rate.
-    got = read(path)
-    assert (got.laser.name, got.laser.link, got.laser.kind) == ("hls_lfcd_lds", link, kind)
-    assert (got.laser.node.location.path, got.laser.node.location.line) == (path, line)
-    expected = replace(lds_01((-0.032, 0.0, 0.171), 6.28), update_rate=update_rate)
-    assert_profile(got, expected, "turtlebot3_burger")
-
-
-def test_the_gz_sim_explorer_world_lidar_has_no_noise_and_ignores_the_plugin_resolution() -> None:
-    got = read(F22)
-    assert (got.laser.name, got.laser.link, got.laser.kind) == ("gpu_lidar", "link", "gpu_lidar")
-    expected = LaserProfile(
-        samples=640,
-        resolution=1,  # not the FreeSpaceExplorer plugin's <resolution>0.25
-        min_angle=0.0,
-        max_angle=6.28,
-        range_min=0.08,
-        range_max=9.0,
-        range_resolution=0.01,
-        update_rate=10,
-        noise=None,
-        pose=Pose3D(),  # no sensor or link pose; the model's own pose is in the world
-    )
-    assert_profile(got, expected, "model_with_lidar")
-    assert got.profile.noise is None
-
-
-# --- F21: sdformat's sensor test fixture -----------------------------------------------------
-
-
-def test_sdformats_fixture_with_an_unbound_prefix_still_yields_its_four_lasers() -> None:
-    # F21 note: <my_namespace:custom_sensor> has no xmlns declaration; that is not an error.
-    written = F21.read_bytes()
-    assert b"<my_namespace:custom_sensor>" in written
-    assert b"xmlns:my_namespace" not in written
-    assert [(laser.name, laser.kind, laser.planar) for laser in lasers(F21)] == [
-        ("gpu_ray_sensor", "gpu_ray", True),
-        ("gpu_lidar_sensor", "gpu_lidar", True),
-        ("ray_sensor", "ray", False),
-        ("lidar_sensor", "lidar", False),
-    ]
-
-
-F21_ERRORS = {
-    # sensor: (line, field, what the problem says)
-    None: (
-        1,
-        "--sensor",
-        "has 2 2D lasers: 'gpu_ray_sensor' (line 198), 'gpu_lidar_sensor' (line 202)",
-    ),
-    "gpu_ray_sensor": (
-        198,
-        "gpu_ray_sensor",
-        "the gpu_ray sensor 'gpu_ray_sensor' has no <ray> or <lidar> block",
-    ),
-    "gpu_lidar_sensor": (202, "gpu_lidar_sensor", "the gpu_lidar sensor sets no <update_rate>"),
-    # The line of the <vertical><samples>240</samples>.
-    "ray_sensor": (
-        334,
-        "ray_sensor: <samples>",
-        "the sensor 'ray_sensor' scans 240 vertical samples: it is a 3D lidar",
-    ),
-    "lidar_sensor": (
-        365,
-        "lidar_sensor: <samples>",
-        "the sensor 'lidar_sensor' scans 240 vertical samples: it is a 3D lidar",
-    ),
-}
-
-
-@pytest.mark.parametrize(
-    ("sensor", "line", "field", "problem"),
-    [(sensor, *expected) for sensor, expected in F21_ERRORS.items()],
-    ids=[str(sensor) for sensor in F21_ERRORS],
-)
-def test_no_laser_of_sdformats_fixture_is_a_usable_2d_scanner_and_each_says_why(
-    sensor: str | None, line: int, field: str, problem: str
-) -> None:
-    error = error_of(F21, {}, sensor=sensor)
-    assert_at(error, F21, line)
-    assert error.field == field
-    assert problem in error.problem
-
-
-def test_sdformats_gpu_lidar_with_a_legacy_ray_block_is_read_up_to_its_missing_rate() -> None:
-    # F21 (b): libsdformat reads a <ray> child of a gpu_lidar as its <lidar>.
-    (laser,) = [laser for laser in lasers(F21) if laser.name == "gpu_lidar_sensor"]
-    fields = {key: node.value for key, node in laser.fields().items()}
-    assert fields == {
-        "samples": 640,
-        "resolution": 1,
-        "min_angle": -1.396263,
-        "max_angle": 1.396263,
-        "range.min": 0.08,
-        "range.max": 10.0,
-        "range.resolution": 0.01,
-    }
-    assert laser.mount().pose.xyz == pytest.approx((1.0, 2.0, 6.0), abs=EXACT)
-    assert laser.mount().base == "model"
-
-
-@pytest.mark.parametrize("name", ["ray_sensor", "lidar_sensor"])
-def test_sdformats_3d_lidars_keep_their_horizontal_fields(name: str) -> None:
-    # F21 (c), (d): resolution 0.9 and a noise mean of 0.98, unlike any other corpus laser.
-    (laser,) = [laser for laser in lasers(F21) if laser.name == name]
-    fields = {key: node.value for key, node in laser.fields().items()}
-    assert fields["samples"] == 320
-    assert fields["resolution"] == 0.9
-    assert (fields["noise.mean"], fields["noise.stddev"]) == (0.98, 0.76)
-    assert "update_rate" not in fields
