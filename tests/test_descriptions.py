@@ -265,6 +265,14 @@ BROKEN = {
         "robot.urdf has no laser sensor or link named 'back'",
         "its lasers: 'front', 'rear'",
     ),
+    "a file that is no robot description": Broken(
+        {"robot.urdf": "<?xml version='1.0'?>\n<launch>\n  <arg name='x'/>\n</launch>\n"},
+        "{urdf: robot.urdf}",
+        "robot.urdf",
+        2,
+        "the root element is <launch>: this is neither a URDF (<robot>) nor an SDFormat file",
+        "point `urdf:` at the robot's URDF, xacro or SDF file",
+    ),
     "malformed XML": Broken(
         {"robot.urdf": ROBOT.replace("</horizontal></scan>", "</scan>")},
         "{urdf: robot.urdf}",

@@ -14,6 +14,7 @@ from pathlib import Path
 
 from pytest_lasertest.spec.errors import Location, SpecError
 from pytest_lasertest.spec.laser_block import LASER_TYPES, is_laser
+from pytest_lasertest.spec.xacro_expand import origin
 from pytest_lasertest.spec.xmlfile import XmlElement
 
 # xacro args whose names suggest a laser, and among them those that switch something on.
@@ -28,7 +29,7 @@ NO_LASER_FIX = (
 def no_laser_error(path: Path, root: XmlElement, sources: Mapping[Path, XmlElement]) -> SpecError:
     """The error for a description without a laser, with the likeliest reasons."""
     macros = _macros(sources)
-    bare = _bare_calls(root, macros, sources)
+    bare = _bare_calls(root, macros)
     if bare:
         return SpecError(
             bare[0][1],
@@ -83,19 +84,11 @@ def _macros(sources: Mapping[Path, XmlElement]) -> dict[str, XmlElement]:
     return macros
 
 
-def _bare_calls(
-    root: XmlElement, macros: Mapping[str, XmlElement], sources: Mapping[Path, XmlElement]
-) -> list[tuple[str, Location]]:
+def _bare_calls(root: XmlElement, macros: Mapping[str, XmlElement]) -> list[tuple[str, Location]]:
     """Elements of the expanded tree named like a macro: calls xacro left alone, each where a
     file writes it."""
-    written = {
-        element.tag: element.location
-        for source in reversed(list(sources.values()))
-        for element in source.walk()
-        if element.tag in macros
-    }
     return [
-        (element.tag, written.get(element.tag, macros[element.tag].location))
+        (element.tag, origin(element) or macros[element.tag].location)
         for element in root.walk()
         if element.tag in macros
     ]

@@ -90,9 +90,16 @@ class Laser:
 def read_lasers(description: DescriptionFile) -> tuple[Laser, ...]:
     """Every laser of a description; SpecError when it has none, saying why."""
     document = _read(description)
-    found = (
-        _urdf_lasers(document.root) if document.root.tag == "robot" else _sdf_lasers(document.root)
-    )
+    root = document.root
+    if root.tag not in ("robot", "sdf"):
+        raise SpecError(
+            root.location,
+            "",
+            f"the root element is <{root.tag}>: this is neither a URDF (<robot>) nor an SDFormat "
+            "file (<sdf>)",
+            "point `urdf:` at the robot's URDF, xacro or SDF file",
+        )
+    found = _urdf_lasers(root) if root.tag == "robot" else _sdf_lasers(root)
     if not found:
         raise no_laser_error(document.path, document.root, document.sources)
     return tuple(_laser(document, item) for item in found)
@@ -120,9 +127,7 @@ def choose_laser(
             chosen[0].check_planar()
             return chosen[0]
         if chosen:
-            listing = ", ".join(
-                f"{laser.kind} at line {laser.node.location.line}" for laser in chosen
-            )
+            listing = ", ".join(f"{laser.kind} at {_place(laser, lasers)}" for laser in chosen)
             raise where.error(
                 f"{file} has {len(chosen)} lasers whose {key} is {wanted!r}: {listing}",
                 "give each laser its own sensor name, and choose one with `sensor: NAME`",
