@@ -18,8 +18,8 @@ UNCHANGED_OUTPUT = "lasertest_unchanged"
 
 
 class LaserSession:
-    """Collects pairs files, keeps a broken one from stopping the rest of the run, and sums up
-    what the placement items found."""
+    """Collects pairs files, keeps a broken one from stopping the rest of the run, sums up what
+    the placement items found, and names the pairs that needed no items."""
 
     def __init__(self, options: LaserOptions, unchanged: Unchanged) -> None:
         self.options = options
