@@ -27,6 +27,7 @@ class ReadProfile:
 
     laser: Laser
     profile: LaserProfile
+    base_frame: str  # the frame the mount is given in
     file: Path
     ref: str | None
     commit: str | None
@@ -47,7 +48,7 @@ def read_profile(
     where = SpecNode(sensor, Location(path, 1), "--sensor")
     laser = choose_laser(lasers, sensor, where, reader.name(path))
     commit = reader.revision.commit if isinstance(reader, AtRevision) else None
-    return ReadProfile(laser, laser_profile(laser, {}), path, ref, commit)
+    return ReadProfile(laser, laser_profile(laser, {}), laser.mount().base, path, ref, commit)
 
 
 def profile_read_json(read: ReadProfile) -> dict[str, object]:
@@ -60,7 +61,7 @@ def profile_read_json(read: ReadProfile) -> dict[str, object]:
         "file": display_path(read.file),
         "ref": read.ref,
         "commit": read.commit,
-        "base_frame": laser.mount().base,
+        "base_frame": read.base_frame,
         **profile_json(read.profile),
     }
 
@@ -98,7 +99,7 @@ def profile_read_text(read: ReadProfile) -> str:
         (
             "mount",
             f"xyz {_triple(profile.pose.xyz)} m, rpy {_triple(profile.pose.rpy)} rad "
-            f"in {laser.mount().base}" + (", upside down" if profile.pose.is_upside_down() else ""),
+            f"in {read.base_frame}" + (", upside down" if profile.pose.is_upside_down() else ""),
         ),
         (
             "laserscan",

@@ -39,16 +39,16 @@ def urdf_mount(robot: XmlElement, link: str, sensor: XmlElement, locate: Locate)
             "point `urdf:` at the robot description that defines the link and its joints",
         )
     joints = _joints(robot, locate)
-    base = FOOTPRINT if FOOTPRINT in links else _root(link, joints, locate)
-    if _root(base, joints, locate) != _root(link, joints, locate):
+    up_from_link = _chain(link, joints, locate)
+    base = FOOTPRINT if FOOTPRINT in links else _root(link, up_from_link)
+    up_from_base = _chain(base, joints, locate)
+    if _root(base, up_from_base) != _root(link, up_from_link):
         raise locate(sensor).error(
             f"no joint chain joins the sensor's link {link!r} to {base!r}",
             "join the laser's link to the robot with joints",
         )
-    in_root = _in_root(link, joints, locate)
-    base_in_root = _in_root(base, joints, locate)
-    pose = base_in_root.inverse().then(in_root).then(sdf_pose(sensor.child("pose"), locate))
-    return Mount(pose, base)
+    in_base = _in_root(up_from_base).inverse().then(_in_root(up_from_link))
+    return Mount(in_base.then(sdf_pose(sensor.child("pose"), locate)), base)
 
 
 @dataclass(frozen=True)
@@ -98,15 +98,15 @@ def _chain(link: str, joints: Mapping[str, _Joint], locate: Locate) -> list[_Joi
     return chain
 
 
-def _root(link: str, joints: Mapping[str, _Joint], locate: Locate) -> str:
-    chain = _chain(link, joints, locate)
+def _root(link: str, chain: list[_Joint]) -> str:
+    """The root link of `link`, whose chain up is `chain`."""
     return chain[-1].parent if chain else link
 
 
-def _in_root(link: str, joints: Mapping[str, _Joint], locate: Locate) -> Pose3D:
-    """The link's pose in the root link's frame."""
+def _in_root(chain: list[_Joint]) -> Pose3D:
+    """The pose, in the root link's frame, of the link whose chain up is `chain`."""
     pose = Pose3D()
-    for joint in reversed(_chain(link, joints, locate)):
+    for joint in reversed(chain):
         pose = pose.then(joint.origin)
     return pose
 

@@ -72,12 +72,12 @@ def expand_xacro(
     try:
         with _patched(xacro, _opener(reader, opened), _finder(packages)):
             document = xacro.process_file(str(path), mappings=dict(args))
-    except xacro.XacroException as error:
-        raise _xacro_error(error, list(xacro.filestack or [str(path)]), opened, reader) from None
     except SpecError:
         raise
     except Exception as error:  # noqa: BLE001  (xacro raises bare errors from user expressions)
-        raise _xacro_error(error, list(xacro.filestack or [str(path)]), opened, reader) from None
+        # xacro names no lines, but its stack says which file it was reading.
+        reading = Path(os.path.abspath((xacro.filestack or [None])[-1] or path))
+        raise _xacro_error(error, reading, opened, reader) from None
     text = document.toxml(encoding="utf-8")
     root = parse_xml(text, path)
     return Expansion(root, opened)
@@ -159,14 +159,13 @@ def _finder(packages: Mapping[str, Path]) -> object:
 
 def _xacro_error(
     error: Exception,
-    stack: list[str],
+    here: Path,
     opened: Mapping[Path, XmlElement | None],
     reader: FileReader,
 ) -> SpecError:
     cause = _root_cause(error)
     if isinstance(cause, SpecError):
         return cause
-    here = Path(os.path.abspath(stack[-1])) if stack and stack[-1] else None
     if isinstance(cause, _MissingPackage):
         return SpecError(
             _where(here, opened, f"$(find {cause.package})"),
@@ -205,14 +204,10 @@ def _first_name(message: str) -> str | None:
     return quoted.group(1) if quoted else None
 
 
-def _where(
-    path: Path | None, opened: Mapping[Path, XmlElement | None], needle: str | None
-) -> Location:
+def _where(path: Path, opened: Mapping[Path, XmlElement | None], needle: str | None) -> Location:
     """The first element whose tag, attributes or text hold `needle`: in `path` (the file
     xacro was reading; it reports no lines), else in the other files it read (a macro's body
     is evaluated where it is called, but written where it is defined)."""
-    if path is None:
-        return Location(Path("<xacro>"), 1)
     if not needle:
         return Location(path, 1)
     others = [root for key, root in opened.items() if key != path]
