@@ -22,9 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from pytest_lasertest.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D, Pose3D
-from pytest_lasertest.path import nominal_path, scan_times
-from pytest_lasertest.placement import (
+from pytest_lasertest.model.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D, Pose3D
+from pytest_lasertest.model.route import nominal_path, scan_times
+from pytest_lasertest.model.verify import (
     DIRECTIONS,
     Direction,
     Placement,
@@ -35,8 +35,8 @@ from pytest_lasertest.placement import (
 )
 from pytest_lasertest.solver.plan import DirectionSearch, plan_direction, plan_pair
 from pytest_lasertest.solver.search import MIN_HEIGHT, SearchSettings, anchor_times
-from pytest_lasertest.spec import load_pairs_file
-from pytest_lasertest.spec.catalogue import load_catalogue
+from pytest_lasertest.pairsfile import load_pairs_file
+from pytest_lasertest.pairsfile.catalogue import load_catalogue
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")

@@ -10,11 +10,11 @@ from typing import Any
 import hypothesis  # noqa: F401  (see below)
 import pytest
 
-import pytest_lasertest.collect  # (see below)
+import pytest_lasertest.plugin.collect  # (see below)
 import pytest_lasertest.solver.plan  # noqa: F401  (see below)
-from pytest_lasertest.sensor import LaserProfile
+from pytest_lasertest.model.sensor import LaserProfile
 
-# hypothesis, pytest_lasertest.collect and the solver (with z3) are imported only to stay loaded
+# hypothesis, pytest_lasertest.plugin.collect and the solver (with z3) are imported only to stay loaded
 # across pytester runs: in-process runs drop the modules they imported, numpy cannot be imported
 # twice in one process, and Hypothesis's plugin would re-import hypothesis on every run.
 pytest_plugins = ["pytester", "tests.corpus"]

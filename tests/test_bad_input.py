@@ -418,7 +418,7 @@ def test_fulltrace_shows_where_in_the_plugin_the_error_was_raised(
         VALID_PAIRS.replace("samples: 720", "samples: 0")
     )
     result = pytester.runpytest("--fulltrace")
-    result.stdout.fnmatch_lines(["*pytest_lasertest/collect.py:*", "*CollectError*"])
+    result.stdout.fnmatch_lines(["*pytest_lasertest/plugin/collect.py:*", "*CollectError*"])
 
 
 def test_a_robot_directory_next_to_the_pairs_file_is_found_by_its_relative_path(

@@ -14,11 +14,11 @@ import pytest
 
 from pytest_lasertest import cli
 from pytest_lasertest.cli import main
-from pytest_lasertest.explain_report import explain_scans, explain_text
-from pytest_lasertest.geometry import Box
-from pytest_lasertest.path import nominal_path
-from pytest_lasertest.placement import Placement, Scene, Verification, Witness
-from pytest_lasertest.spec import load_pairs_file
+from pytest_lasertest.reports.explain import explain_scans, explain_text
+from pytest_lasertest.model.geometry import Box
+from pytest_lasertest.model.route import nominal_path
+from pytest_lasertest.model.verify import Placement, Scene, Verification, Witness
+from pytest_lasertest.pairsfile import load_pairs_file
 from tests.conftest import SIZE_PAIR
 
 REQUIRED_MODELS = {
@@ -64,7 +64,7 @@ def test_the_catalogue_as_json_gives_every_number(capsys: pytest.CaptureFixture[
 
 
 def test_every_catalogue_file_names_its_source() -> None:
-    from pytest_lasertest.spec.bundled import LIDARS_DIR
+    from pytest_lasertest.pairsfile.bundled import LIDARS_DIR
 
     for path in sorted(LIDARS_DIR.glob("*.yaml")):
         assert "# Source:" in path.read_text(), f"{path.name} does not name its datasheet"

@@ -12,7 +12,7 @@ from typing import NamedTuple
 
 import pytest
 
-from pytest_lasertest.placement import Placement, Scene, Verification, verify
+from pytest_lasertest.model.verify import Placement, Scene, Verification, verify
 from pytest_lasertest.sim.client import connected_clients
 from tests.conftest import EXAMPLES, SIZE_PAIR
 
@@ -421,7 +421,7 @@ def summary(lines: list[str]) -> list[str]:
 def test_a_witness_the_ray_cast_rejects_fails_as_a_bug_in_the_solver(
     pytester: pytest.Pytester, placement_pairs: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from pytest_lasertest import placement_item
+    from pytest_lasertest.plugin.items import placement as placement_item
 
     def rejecting(scene: Scene, placement: Placement) -> Verification:
         return dataclasses.replace(verify(scene, placement), concealment=-0.001)

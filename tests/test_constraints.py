@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from pytest_lasertest.spec.constraints import (
+from pytest_lasertest.pairsfile.constraints import (
     Arithmetic,
     Call,
     Comparison,
@@ -22,8 +22,8 @@ from pytest_lasertest.spec.constraints import (
     parse_formula,
     read_constraint,
 )
-from pytest_lasertest.spec.errors import Location, SpecError
-from pytest_lasertest.spec.node import SpecNode
+from pytest_lasertest.inputs.errors import Location, SpecError
+from pytest_lasertest.inputs.node import SpecNode
 
 SPEC = Path("f.lasertest.yaml")
 

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from pytest_lasertest.geometry import Pose3D
-from pytest_lasertest.sensor import LaserProfile
+from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.model.sensor import LaserProfile
 from tests.corpus import (
     EXACT,
     F17,

@@ -25,9 +25,9 @@ from pathlib import Path
 
 import pytest
 
-from pytest_lasertest.geometry import Pose3D
-from pytest_lasertest.sensor import GaussianNoise, LaserProfile
-from pytest_lasertest.spec.catalogue import load_catalogue
+from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.model.sensor import GaussianNoise, LaserProfile
+from pytest_lasertest.pairsfile.catalogue import load_catalogue
 from tests.corpus import (
     CORPUS,
     EXACT,

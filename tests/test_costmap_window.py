@@ -6,7 +6,7 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from pytest_lasertest.nav.costmap import (
+from pytest_lasertest.nav.move_base.costmap import (
     FREE,
     INSCRIBED,
     LETHAL,

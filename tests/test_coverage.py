@@ -9,15 +9,15 @@ from typing import Any
 import numpy as np
 import pytest
 
-from pytest_lasertest.coverage import (
+from pytest_lasertest.model.coverage import (
     CoverageComparison,
     Sector,
     compare_coverage,
     sector_difference,
     sure_detection_distance,
 )
-from pytest_lasertest.geometry import Pose3D
-from pytest_lasertest.sensor import GaussianNoise, LaserProfile
+from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.model.sensor import GaussianNoise, LaserProfile
 from tests.conftest import profile
 
 HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.44023), (3.14159, 0.0, 0.0))

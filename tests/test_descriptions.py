@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from pytest_lasertest.profile_report import read_profile
-from pytest_lasertest.sensor import LaserProfile
+from pytest_lasertest.reports.description import read_profile
+from pytest_lasertest.model.sensor import LaserProfile
 from tests.conftest import commit_everything, git
 from tests.test_bad_input import assert_one_clean_error
 

@@ -9,9 +9,9 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from pytest_lasertest.geometry import FloatArray
-from pytest_lasertest.nav.costmap import InflationCost
-from pytest_lasertest.nav.dwa import (
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.nav.move_base.costmap import InflationCost
+from pytest_lasertest.nav.move_base.dwa import (
     DwaSettings,
     LocalPlanner,
     Oscillation,

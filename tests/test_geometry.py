@@ -8,7 +8,7 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from pytest_lasertest.geometry import (
+from pytest_lasertest.model.geometry import (
     Box,
     Cylinder,
     FloatArray,

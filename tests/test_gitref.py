@@ -11,7 +11,7 @@ from typing import Any
 
 import pytest
 
-from pytest_lasertest.spec.gitref import GitError, GitRevision, open_revision
+from pytest_lasertest.descriptions.gitref import GitError, GitRevision, open_revision
 
 Git = Callable[..., str]
 

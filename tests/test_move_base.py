@@ -14,18 +14,18 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pytest_lasertest.drives import drive, solver_path
-from pytest_lasertest.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D
-from pytest_lasertest.nav.costmap import LETHAL
+from pytest_lasertest.search.drives import drive, solver_path
+from pytest_lasertest.model.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D
+from pytest_lasertest.nav.move_base.costmap import LETHAL
 from pytest_lasertest.nav.move_base import MoveBase
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
-from pytest_lasertest.nav.settings import NavigationSettings, Parameter
-from pytest_lasertest.robot import Robot
-from pytest_lasertest.sensor import LaserProfile
+from pytest_lasertest.nav.move_base.settings import NavigationSettings, Parameter
+from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.sim.oracles import Rules
 from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
 from pytest_lasertest.solver.plan import plan_pair
-from pytest_lasertest.spec import load_pairs_file
+from pytest_lasertest.pairsfile import load_pairs_file
 from tests.conftest import EXAMPLES
 
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")

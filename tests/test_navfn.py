@@ -10,8 +10,8 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from pytest_lasertest.nav.costmap import FREE, INSCRIBED, LETHAL, UNKNOWN
-from pytest_lasertest.nav.navfn import (
+from pytest_lasertest.nav.move_base.costmap import FREE, INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.navfn import (
     SCALE,
     UNREACHABLE,
     NavfnSettings,

@@ -6,9 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from pytest_lasertest.nav.settings import NavigationSettings
-from pytest_lasertest.spec.bundled import bundled_robots
-from pytest_lasertest.spec.pairs import load_pairs_file
+from pytest_lasertest.nav.move_base.settings import NavigationSettings
+from pytest_lasertest.pairsfile.bundled import bundled_robots
+from pytest_lasertest.pairsfile.pairs import load_pairs_file
 from tests.test_bad_input import Case, assert_one_clean_error
 
 # Line numbers matter: the cases below break one line of it.

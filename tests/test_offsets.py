@@ -8,8 +8,8 @@ from functools import cache
 import numpy as np
 import pytest
 
-from pytest_lasertest.geometry import Box, Cylinder
-from pytest_lasertest.offsets import (
+from pytest_lasertest.model.geometry import Box, Cylinder
+from pytest_lasertest.search.offsets import (
     AXES,
     REACH,
     Offset,
@@ -18,9 +18,9 @@ from pytest_lasertest.offsets import (
     offset_box,
     perturbed,
 )
-from pytest_lasertest.placement import PairPlan, Placement, Witness
+from pytest_lasertest.model.verify import PairPlan, Placement, Witness
 from pytest_lasertest.solver.plan import plan_pair
-from pytest_lasertest.spec import load_pairs_file
+from pytest_lasertest.pairsfile import load_pairs_file
 from tests.conftest import EXAMPLES
 
 SIZES = (0.0507, 1.0)  # m, the paper's pairs file's smallest and largest obstacle

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from pytest_lasertest.options import (
+from pytest_lasertest.plugin.options import (
     default_profile,
     parse_artifacts,
     parse_pairs,

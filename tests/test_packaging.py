@@ -31,7 +31,7 @@ def test_a_pytest_run_without_pairs_files_loads_no_solver_or_simulator(
         import sys
 
         def test_heavy_modules_are_not_loaded():
-            assert not {"z3", "pybullet", "pytest_lasertest.collect"} & set(sys.modules)
+            assert not {"z3", "pybullet", "pytest_lasertest.plugin.collect"} & set(sys.modules)
         """
     )
     pytester.runpytest_subprocess("-p", "no:hypothesispytest").assert_outcomes(passed=1)

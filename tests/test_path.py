@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from pytest_lasertest.geometry import Point2D, Pose2D
-from pytest_lasertest.path import (
+from pytest_lasertest.model.geometry import Point2D, Pose2D
+from pytest_lasertest.model.route import (
     Leg,
     NominalPath,
     Turn,

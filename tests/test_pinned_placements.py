@@ -10,9 +10,9 @@ import pytest
 import yaml
 
 from pytest_lasertest.artifacts.repro import write_repro
-from pytest_lasertest.geometry import Box, Cylinder, Obstacle
-from pytest_lasertest.spec import Pair, PairsFile, SpecError, load_pairs_file
-from pytest_lasertest.spec.placements import PinnedPlacement, obstacle_fields
+from pytest_lasertest.model.geometry import Box, Cylinder, Obstacle
+from pytest_lasertest.pairsfile import Pair, PairsFile, SpecError, load_pairs_file
+from pytest_lasertest.pairsfile.placements import PinnedPlacement, obstacle_fields
 from tests.conftest import VALID_PAIRS
 from tests.test_bad_input import Case, assert_one_clean_error
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from pytest_lasertest.spec import load_pairs_file
+from pytest_lasertest.pairsfile import load_pairs_file
 from tests.conftest import REPO
 
 README = (REPO / "README.md").read_text()

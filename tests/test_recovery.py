@@ -8,9 +8,9 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from pytest_lasertest.geometry import FloatArray
-from pytest_lasertest.nav.costmap import FREE, LETHAL, UNKNOWN, Costmap, CostmapSettings
-from pytest_lasertest.nav.recovery import BackUp, ClearCostmap, Pose, RotateInPlace, RotateSettings
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.nav.move_base.costmap import FREE, LETHAL, UNKNOWN, Costmap, CostmapSettings
+from pytest_lasertest.nav.move_base.recovery import BackUp, ClearCostmap, Pose, RotateInPlace, RotateSettings
 
 Mask = npt.NDArray[np.bool_]
 Command = tuple[float, float]

@@ -9,8 +9,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from pytest_lasertest.geometry import Pose3D, wrap_angle
-from pytest_lasertest.sensor import GaussianNoise, ProfileError
+from pytest_lasertest.model.geometry import Pose3D, wrap_angle
+from pytest_lasertest.model.sensor import GaussianNoise, ProfileError
 from tests.conftest import profile
 
 HUSKY_ROLL = 3.14159  # rad, as the Husky description writes "upside down"

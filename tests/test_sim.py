@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pytest_lasertest.geometry import (
+from pytest_lasertest.model.geometry import (
     Box,
     Cylinder,
     Obstacle,
@@ -17,7 +17,7 @@ from pytest_lasertest.geometry import (
     ray_distances,
     segment_clearances,
 )
-from pytest_lasertest.sensor import GaussianNoise, LaserProfile
+from pytest_lasertest.model.sensor import GaussianNoise, LaserProfile
 from pytest_lasertest.sim.client import PhysicsWorld, connected_clients
 from pytest_lasertest.sim.lidar import (
     FlatLidar,

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pytest_lasertest.geometry import (
+from pytest_lasertest.model.geometry import (
     Box,
     Cylinder,
     Point2D,
@@ -18,8 +18,8 @@ from pytest_lasertest.geometry import (
     polygon_clearance,
     segment_clearances,
 )
-from pytest_lasertest.path import nominal_path
-from pytest_lasertest.placement import (
+from pytest_lasertest.model.route import nominal_path
+from pytest_lasertest.model.verify import (
     DIRECTIONS,
     EXACT_WITHIN,
     REQUIRED_MARGIN,
@@ -36,9 +36,9 @@ from pytest_lasertest.solver.encoding import ObstacleShape
 from pytest_lasertest.solver.plan import plan_direction
 from pytest_lasertest.solver.search import Found, Query, SearchSettings, needed_room
 from pytest_lasertest.solver.seeds import candidates, seeds
-from pytest_lasertest.spec import load_pairs_file
-from pytest_lasertest.spec.constraints import Constraint, parse_formula
-from pytest_lasertest.spec.errors import Location
+from pytest_lasertest.pairsfile import load_pairs_file
+from pytest_lasertest.pairsfile.constraints import Constraint, parse_formula
+from pytest_lasertest.inputs.errors import Location
 from tests.conftest import EXAMPLES
 
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")

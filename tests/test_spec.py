@@ -6,9 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from pytest_lasertest.geometry import Point2D, Pose2D, Pose3D
-from pytest_lasertest.spec import SpecError, load_pairs_file
-from pytest_lasertest.spec.catalogue import load_catalogue
+from pytest_lasertest.model.geometry import Point2D, Pose2D, Pose3D
+from pytest_lasertest.pairsfile import SpecError, load_pairs_file
+from pytest_lasertest.pairsfile.catalogue import load_catalogue
 from tests.conftest import EXAMPLES, VALID_PAIRS
 
 HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.44023), (3.14159, 0.0, 0.0))

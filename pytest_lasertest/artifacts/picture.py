@@ -25,7 +25,7 @@ from matplotlib.patches import Circle, Patch, Polygon, Rectangle
 from matplotlib.ticker import MultipleLocator
 
 from pytest_lasertest.artifacts.files import write_atomically
-from pytest_lasertest.geometry import Box, FloatArray, Obstacle
+from pytest_lasertest.model.geometry import Box, FloatArray, Obstacle
 
 BoolArray = npt.NDArray[np.bool_]
 Pose: TypeAlias = tuple[float, float, float]  # m, m, rad

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from pytest_lasertest.artifacts.files import write_text
-from pytest_lasertest.geometry import Box, Obstacle
+from pytest_lasertest.model.geometry import Box, Obstacle
 
 SDF_VERSION = "1.6"
 STEP = 0.001  # s, the physics step

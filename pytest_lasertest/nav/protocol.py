@@ -15,9 +15,9 @@ from typing import Protocol
 
 import numpy as np
 
-from pytest_lasertest.geometry import FloatArray, Point2D, Pose3D
-from pytest_lasertest.robot import Robot
-from pytest_lasertest.sensor import LaserScanMeta
+from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose3D
+from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.model.sensor import LaserScanMeta
 
 _NO_POINTS: FloatArray = np.zeros((0, 2))
 

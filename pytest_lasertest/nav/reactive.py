@@ -18,9 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pytest_lasertest.geometry import FloatArray, Point2D
+from pytest_lasertest.model.geometry import FloatArray, Point2D
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
-from pytest_lasertest.robot import Robot
+from pytest_lasertest.model.robot import Robot
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,7 @@ from types import ModuleType
 
 import numpy as np
 
-from pytest_lasertest.geometry import Box, FloatArray, Obstacle, Pose2D, bounding_radius
+from pytest_lasertest.model.geometry import Box, FloatArray, Obstacle, Pose2D, bounding_radius
 
 # PyBullet's table of physics clients: ids run from 0 to this, and are reused once disconnected.
 MAX_CLIENTS = 1024

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from pytest_lasertest.robot import Robot
+from pytest_lasertest.model.robot import Robot
 
 
 @dataclass(frozen=True)

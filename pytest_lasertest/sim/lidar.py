@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from pytest_lasertest.geometry import (
+from pytest_lasertest.model.geometry import (
     Box,
     Cylinder,
     FloatArray,
@@ -23,7 +23,7 @@ from pytest_lasertest.geometry import (
     Obstacle,
     bounding_radius,
 )
-from pytest_lasertest.sensor import FULL_TURN, LaserProfile
+from pytest_lasertest.model.sensor import FULL_TURN, LaserProfile
 
 # The distance (m) every beam reads from inside an obstacle.
 _INSIDE = np.zeros(1)

@@ -18,7 +18,7 @@ import math
 from collections import deque
 from dataclasses import dataclass
 
-from pytest_lasertest.geometry import Point2D
+from pytest_lasertest.model.geometry import Point2D
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ from typing import Literal
 
 import numpy as np
 
-from pytest_lasertest.geometry import FloatArray
+from pytest_lasertest.model.geometry import FloatArray
 
 Shape = Literal["box", "cylinder"]
 VARIABLES = ("X", "Y", "S", "H", "M")

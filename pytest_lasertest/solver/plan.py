@@ -6,8 +6,8 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from pytest_lasertest.path import NominalPath, nominal_path
-from pytest_lasertest.placement import (
+from pytest_lasertest.model.route import NominalPath, nominal_path
+from pytest_lasertest.model.verify import (
     DIRECTIONS,
     Direction,
     DirectionPlan,
@@ -15,7 +15,7 @@ from pytest_lasertest.placement import (
     Scene,
     Witness,
 )
-from pytest_lasertest.sensor import same_geometry
+from pytest_lasertest.model.sensor import same_geometry
 from pytest_lasertest.solver.backend import Workspace
 from pytest_lasertest.solver.encoding import ObstacleShape
 from pytest_lasertest.solver.proof import prove
@@ -28,7 +28,7 @@ from pytest_lasertest.solver.search import (
     shapes_for,
 )
 from pytest_lasertest.solver.seeds import Candidates, Seed, candidates, seeds
-from pytest_lasertest.spec.pairs import Pair, PairsFile
+from pytest_lasertest.pairsfile.pairs import Pair, PairsFile
 
 SEEDS_PER_ANCHOR = 3  # seeds tried per anchor and shape before the search moves on
 

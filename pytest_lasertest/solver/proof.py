@@ -14,9 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pytest_lasertest.geometry import FloatArray
-from pytest_lasertest.path import scan_times, swept_polygons
-from pytest_lasertest.placement import (
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.route import scan_times, swept_polygons
+from pytest_lasertest.model.verify import (
     ROLES,
     Direction,
     Placement,

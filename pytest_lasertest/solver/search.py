@@ -17,9 +17,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from pytest_lasertest.geometry import Box, Cylinder, FloatArray, Obstacle
-from pytest_lasertest.path import Leg, scan_times, swept_polygons
-from pytest_lasertest.placement import (
+from pytest_lasertest.model.geometry import Box, Cylinder, FloatArray, Obstacle
+from pytest_lasertest.model.route import Leg, scan_times, swept_polygons
+from pytest_lasertest.model.verify import (
     REQUIRED_MARGIN,
     Direction,
     Placement,
@@ -40,7 +40,7 @@ from pytest_lasertest.solver.encoding import (
 from pytest_lasertest.solver.seeds import Seed
 from pytest_lasertest.solver.user import formula_text
 from pytest_lasertest.solver.ways import hides_below, misses
-from pytest_lasertest.spec.constraints import Constraint
+from pytest_lasertest.pairsfile.constraints import Constraint
 
 # The solver aims a little above the required margin so that rounding to floats cannot undo it.
 TARGET_MARGIN = REQUIRED_MARGIN + 1e-4  # m

@@ -18,9 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pytest_lasertest.geometry import FloatArray, IntArray
-from pytest_lasertest.path import NominalPath, contact_times, scan_times, swept_polygons
-from pytest_lasertest.placement import Direction, Scene
+from pytest_lasertest.model.geometry import FloatArray, IntArray
+from pytest_lasertest.model.route import NominalPath, contact_times, scan_times, swept_polygons
+from pytest_lasertest.model.verify import Direction, Scene
 from pytest_lasertest.solver.ways import rooms_at
 
 SEED_STEP = 0.05  # m between seed points along a beam

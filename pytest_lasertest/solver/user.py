@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pytest_lasertest.solver.encoding import number
-from pytest_lasertest.spec.constraints import (
+from pytest_lasertest.pairsfile.constraints import (
     Arithmetic,
     Call,
     Comparison,

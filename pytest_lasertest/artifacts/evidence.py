@@ -1,0 +1,245 @@
+"""The artifacts of a failing placement item: a picture, a pairs file that replays the case, a
+Gazebo world and a JSON file with every number, side by side under `--laser-artifacts`.
+
+The picture shows the moment the candidate failed: its first collision, the instant it was
+judged stuck, or (when it simply ran out of time) its last pose; both robots' trajectories and
+both scanners' beams at that instant, each from its own robot.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from pytest_lasertest.artifacts.files import artifact_path, write_json
+from pytest_lasertest.artifacts.picture import BeamFan, FailureFigure, draw_failure
+from pytest_lasertest.artifacts.repro import write_repro
+from pytest_lasertest.artifacts.sdf import write_world
+from pytest_lasertest.search.drives import PairDrive
+from pytest_lasertest.model.geometry import Box, FloatArray, Obstacle, ray_distances
+from pytest_lasertest.search.offsets import OffsetBox
+from pytest_lasertest.model.verify import Witness
+from pytest_lasertest.reports.plan import obstacle_json, witness_json
+from pytest_lasertest.model.sensor import LaserProfile
+from pytest_lasertest.sim.scenario import Run
+from pytest_lasertest.pairsfile import Pair, PairsFile
+from pytest_lasertest.inputs.errors import Location
+from pytest_lasertest.pairsfile.placements import PinnedPlacement
+from pytest_lasertest.search.trials import TrialResult, Trials
+
+SUFFIXES = (".png", ".lasertest.yaml", ".world", ".json")
+
+
+@dataclass(frozen=True)
+class Failure:
+    """A failing placement item's case, as the artifacts need it."""
+
+    nodeid: str
+    spec: PairsFile
+    pair: Pair
+    witness: Witness
+    result: TrialResult
+    trials: Trials
+    box: OffsetBox
+    seed: int  # of the run, and of its scan noise
+    run_options: dict[str, object]  # the seed, profile and policy of the run, for the record
+
+
+def write_evidence(directory: Path, failure: Failure) -> tuple[Path, ...]:
+    """Write the four artifacts of `failure` below `directory`; returns their paths."""
+    png, repro, world, numbers = (
+        artifact_path(directory, failure.nodeid, suffix) for suffix in SUFFIXES
+    )
+    obstacle = failure.result.placement.obstacle
+    draw_failure(failure_figure(failure), png)
+    pinned = PinnedPlacement(
+        obstacle, failure.seed, failure.result.placement.direction, Location(repro, 1)
+    )
+    header = [
+        f"The minimal failure of {failure.nodeid}, pinned.",
+        "Collect this file on its own to replay it; commit it (or copy its pair into your",
+        "pairs file) to keep the case as a regression test.",
+    ]
+    write_repro(repro, failure.spec, failure.pair, pinned, header)
+    write_world(world, failure.pair.name, (obstacle,))
+    write_json(numbers, evidence_json(failure))
+    return png, repro, world, numbers
+
+
+def failure_moment(run: Run) -> tuple[float, str]:
+    """When and how the run failed: its collision, its getting stuck, or its time running out."""
+    verdicts = run.verdicts
+    if verdicts.collision.time is not None:
+        return verdicts.collision.time, f"collided at t = {verdicts.collision.time:.2f} s"
+    if verdicts.stuck.time is not None:
+        return verdicts.stuck.time, f"stuck at t = {verdicts.stuck.time:.2f} s"
+    end = float(run.times[-1])
+    return end, f"goal not reached by t = {end:.2f} s"
+
+
+def failure_figure(failure: Failure) -> FailureFigure:
+    """The picture of the candidate's failure at the minimal placement."""
+    result = failure.result
+    baseline = result.baseline if result.baseline is not None else result.candidate
+    title = f"{failure.nodeid}: {result.classification}"
+    return drive_figure(
+        title, failure.spec, failure.pair, (baseline, result.candidate), result.placement.obstacle
+    )
+
+
+def drive_figure(
+    title: str, spec: PairsFile, pair: Pair, runs: tuple[Run, Run], obstacle: Obstacle | None
+) -> FailureFigure:
+    """The picture of the candidate's failure in one world, both robots' runs (baseline,
+    candidate) drawn at the moment the candidate failed."""
+    baseline, candidate = runs
+    time, label = failure_moment(candidate)
+    candidate_pose, baseline_pose = _pose_at(candidate, time), _pose_at(baseline, time)
+    world = spec.world
+    return FailureFigure(
+        title=f"{title}, candidate {label}",
+        obstacle=obstacle,
+        baseline_path=baseline.poses[:, :2],
+        candidate_path=candidate.poses[:, :2],
+        footprint=spec.robot.footprint_array(),
+        candidate_pose=_triple(candidate_pose),
+        baseline_pose=_triple(baseline_pose),
+        beams=(
+            beam_fan(
+                f"baseline {pair.baseline.label}", pair.baseline.profile, baseline_pose, obstacle
+            ),
+            beam_fan(
+                f"candidate {pair.candidate.label}",
+                pair.candidate.profile,
+                candidate_pose,
+                obstacle,
+            ),
+        ),
+        failure=_failure_point(candidate, candidate_pose, obstacle),
+        failure_label=label,
+        goal=(world.goal.x, world.goal.y),
+        start=(world.start.x, world.start.y),
+    )
+
+
+def write_control_evidence(
+    directory: Path,
+    nodeid: str,
+    spec: PairsFile,
+    pair: Pair,
+    drives: PairDrive,
+    run_options: dict[str, object],
+) -> tuple[Path, ...]:
+    """The artifacts of a failure in the empty world: the picture, the empty Gazebo world and
+    every number; the item itself replays it."""
+    png, _, world, numbers = (artifact_path(directory, nodeid, suffix) for suffix in SUFFIXES)
+    runs = (drives.baseline, drives.candidate)
+    draw_failure(drive_figure(f"{nodeid}: no obstacle", spec, pair, runs, None), png)
+    write_world(world, pair.name, ())
+    evidence = {
+        "item": nodeid,
+        "pairs_file": str(spec.path),
+        "pair": pair.name,
+        **run_options,
+        "candidate": _run_json(drives.candidate),
+        "baseline": _run_json(drives.baseline),
+    }
+    write_json(numbers, evidence)
+    return png, world, numbers
+
+
+def beam_fan(
+    label: str, profile: LaserProfile, pose: FloatArray, obstacle: Obstacle | None
+) -> BeamFan:
+    """The scanner's beams at `pose`, each stopped where it enters the obstacle or at range_max."""
+    origins, directions = (array[0] for array in profile.rays(pose.reshape(1, 3)))
+    hits = np.zeros(len(origins), dtype=bool)
+    distances = np.full(len(origins), np.inf)
+    if obstacle is not None:
+        distances = ray_distances(origins, directions, obstacle)
+        hits = (distances >= profile.range_min) & (distances <= profile.range_max)
+        hits &= obstacle.height > profile.scan_height
+    lengths = np.where(hits, distances, profile.range_max)
+    ends = origins + directions * lengths[:, np.newaxis]
+    name = f"{label}: {profile.beam_count} beams, {profile.range_max:g} m"
+    return BeamFan(name, origins, ends, hits)
+
+
+def evidence_json(failure: Failure) -> dict[str, object]:
+    """Every number of the failure."""
+    result, trials = failure.result, failure.trials
+    return {
+        "item": failure.nodeid,
+        "pairs_file": str(failure.spec.path),
+        "pair": failure.pair.name,
+        **failure.run_options,
+        "witness": witness_json(failure.witness),
+        "offset": dataclasses.asdict(result.offset),
+        "minimal_obstacle": obstacle_json(result.placement.obstacle),
+        "verification": dataclasses.asdict(result.verification),
+        "classification": result.classification,
+        "failed_oracles": result.oracles(),
+        "candidate": _run_json(result.candidate),
+        "baseline": _run_json(result.baseline) if result.baseline is not None else None,
+        "box": {
+            "low": dataclasses.asdict(failure.box.low),
+            "high": dataclasses.asdict(failure.box.high),
+        },
+        "search": {
+            "examples": trials.examples,
+            "rejected": trials.rejected,
+            "simulations": trials.simulations,
+            "simulations_to_failure": trials.simulations_to_failure,
+        },
+    }
+
+
+def _run_json(run: Run) -> dict[str, object]:
+    verdicts = {
+        name: {**dataclasses.asdict(verdict), "passed": verdict.passed, "margin": verdict.margin}
+        for name, verdict in run.verdicts.named()
+    }
+    return {
+        "passed": run.passed,
+        "verdicts": verdicts,
+        "trajectory_digest": run.digest(),
+        "duration": float(run.times[-1]),
+        "final_pose": run.poses[-1].tolist(),
+    }
+
+
+def _pose_at(run: Run, time: float) -> FloatArray:
+    """The run's pose at `time`, or its last if it ended before."""
+    index = min(int(np.searchsorted(run.times, time)), len(run.times) - 1)
+    pose: FloatArray = run.poses[index]
+    return pose
+
+
+def _failure_point(run: Run, pose: FloatArray, obstacle: Obstacle | None) -> tuple[float, float]:
+    """Where the obstacle was touched (its point nearest the robot), else where the robot was."""
+    if run.verdicts.collision.time is None or obstacle is None:
+        return float(pose[0]), float(pose[1])
+    return _nearest_point(obstacle, float(pose[0]), float(pose[1]))
+
+
+def _nearest_point(obstacle: Obstacle, x: float, y: float) -> tuple[float, float]:
+    """The point of the obstacle's footprint nearest (x, y)."""
+    dx, dy = x - obstacle.x, y - obstacle.y
+    if not isinstance(obstacle, Box):
+        distance = max(float(np.hypot(dx, dy)), 1e-12)
+        scale = min(1.0, obstacle.radius / distance)
+        return obstacle.x + dx * scale, obstacle.y + dy * scale
+    cos, sin = np.cos(obstacle.yaw), np.sin(obstacle.yaw)
+    along = np.clip(cos * dx + sin * dy, -obstacle.length / 2, obstacle.length / 2)
+    across = np.clip(-sin * dx + cos * dy, -obstacle.width / 2, obstacle.width / 2)
+    return float(obstacle.x + cos * along - sin * across), float(
+        obstacle.y + sin * along + cos * across
+    )
+
+
+def _triple(pose: FloatArray) -> tuple[float, float, float]:
+    x, y, yaw = pose.tolist()
+    return x, y, yaw

@@ -1,0 +1,1 @@
+"""Robot descriptions: URDF, xacro and SDF lasers with their mounts, read from the working tree or a git revision."""

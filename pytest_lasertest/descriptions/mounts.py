@@ -1,0 +1,155 @@
+"""Where a laser sits on the robot: its link's pose composed down the description's frames.
+
+URDF: the joint chain from the root link to the sensor's link (every joint at its zero
+position), then the sensor's `<pose>`, expressed in `base_footprint` when the robot has one (the
+ground-level frame ROS navigation works in), else in the root link. SDFormat: the link's `<pose>`
+in its model (and each nested model's pose in its parent), then the sensor's `<pose>`; the
+model frame is the base. SDF joint poses do not move links, so they are not read.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.descriptions.laser_block import Locate
+from pytest_lasertest.descriptions.xmlfile import XmlElement
+
+FOOTPRINT = "base_footprint"
+POSE_FIX = "write six numbers: x y z (m) roll pitch yaw (rad)"
+
+
+@dataclass(frozen=True)
+class Mount:
+    """A sensor's pose in the robot's base frame, and that frame's name."""
+
+    pose: Pose3D
+    base: str
+
+
+def urdf_mount(robot: XmlElement, link: str, sensor: XmlElement, locate: Locate) -> Mount:
+    """The mount of a sensor on `link` of a URDF `<robot>`."""
+    links = {element.get("name") for element in robot.all("link")}
+    if link not in links:
+        raise locate(sensor).error(
+            f"the sensor hangs on link {link!r}, which this description does not define: is it "
+            "a fragment that another file includes?",
+            "point `urdf:` at the robot description that defines the link and its joints",
+        )
+    joints = _joints(robot, locate)
+    up_from_link = _chain(link, joints, locate)
+    base = FOOTPRINT if FOOTPRINT in links else _root(link, up_from_link)
+    up_from_base = _chain(base, joints, locate)
+    if _root(base, up_from_base) != _root(link, up_from_link):
+        raise locate(sensor).error(
+            f"no joint chain joins the sensor's link {link!r} to {base!r}",
+            "join the laser's link to the robot with joints",
+        )
+    in_base = _in_root(up_from_base).inverse().then(_in_root(up_from_link))
+    return Mount(in_base.then(sdf_pose(sensor.child("pose"), locate)), base)
+
+
+@dataclass(frozen=True)
+class _Joint:
+    parent: str
+    origin: Pose3D
+    element: XmlElement
+
+
+def _joints(robot: XmlElement, locate: Locate) -> dict[str, _Joint]:
+    """Each child link's joint."""
+    joints = {}
+    for joint in robot.all("joint"):
+        parent, child = joint.child("parent"), joint.child("child")
+        if parent is None or child is None:
+            raise locate(joint).error(
+                f"joint {joint.get('name')!r} lacks <parent link> or <child link>",
+                'give every joint <parent link="..."/> and <child link="..."/>',
+            )
+        joints[child.get("link") or ""] = _Joint(
+            parent.get("link") or "", _origin(joint, locate), joint
+        )
+    return joints
+
+
+def _origin(joint: XmlElement, locate: Locate) -> Pose3D:
+    origin = joint.child("origin")
+    if origin is None:
+        return Pose3D()
+    xyz = _numbers(origin, origin.get("xyz") or "0 0 0", 3, locate)
+    rpy = _numbers(origin, origin.get("rpy") or "0 0 0", 3, locate)
+    return Pose3D(xyz=(xyz[0], xyz[1], xyz[2]), rpy=(rpy[0], rpy[1], rpy[2]))
+
+
+def _chain(link: str, joints: Mapping[str, _Joint], locate: Locate) -> list[_Joint]:
+    """The joints from `link` up to the root link, nearest first."""
+    chain: list[_Joint] = []
+    while link in joints:
+        joint = joints[link]
+        if any(seen is joint for seen in chain):
+            raise locate(joint.element).error(
+                f"the joints form a loop through link {link!r}",
+                "a URDF is a tree: give every link one parent, and the root none",
+            )
+        chain.append(joint)
+        link = joint.parent
+    return chain
+
+
+def _root(link: str, chain: list[_Joint]) -> str:
+    """The root link of `link`, whose chain up is `chain`."""
+    return chain[-1].parent if chain else link
+
+
+def _in_root(chain: list[_Joint]) -> Pose3D:
+    """The pose, in the root link's frame, of the link whose chain up is `chain`."""
+    pose = Pose3D()
+    for joint in reversed(chain):
+        pose = pose.then(joint.origin)
+    return pose
+
+
+def sdf_mount(
+    models: tuple[XmlElement, ...], link: XmlElement, sensor: XmlElement, locate: Locate
+) -> Mount:
+    """The mount of a sensor on `link`, in the outermost of the nested `models`."""
+    pose = Pose3D()
+    for model in models[1:]:
+        pose = pose.then(sdf_pose(model.child("pose"), locate))
+    for element in (link, sensor):
+        pose = pose.then(sdf_pose(element.child("pose"), locate))
+    return Mount(pose, models[0].get("name") or "model")
+
+
+def sdf_pose(element: XmlElement | None, locate: Locate) -> Pose3D:
+    """An SDF `<pose>`: x y z roll pitch yaw, relative to its parent's frame."""
+    if element is None:
+        return Pose3D()
+    node = locate(element)
+    if element.get("relative_to") not in (None, ""):
+        raise node.error(
+            f"a pose relative_to {element.get('relative_to')!r} is not read by the gate",
+            "write the pose relative to its parent element (leave out relative_to)",
+        )
+    if element.get("rotation_format") not in (None, "euler_rpy"):
+        raise node.error("a quaternion pose is not read by the gate", POSE_FIX)
+    x, y, z, roll, pitch, yaw = _numbers(element, element.text, 6, locate)
+    if element.get("degrees") == "true":
+        roll, pitch, yaw = (math.radians(angle) for angle in (roll, pitch, yaw))
+    return Pose3D(xyz=(x, y, z), rpy=(roll, pitch, yaw))
+
+
+def _numbers(element: XmlElement, text: str, count: int, locate: Locate) -> tuple[float, ...]:
+    words = text.split()
+    try:
+        numbers = tuple(float(word) for word in words)
+    except ValueError:
+        numbers = ()
+    if len(numbers) != count or not all(math.isfinite(number) for number in numbers):
+        raise locate(element).error(
+            f"<{element.tag}> holds {text.strip()!r}, not {count} numbers",
+            POSE_FIX if count == 6 else f"write {count} numbers separated by spaces",
+        )
+    return numbers

@@ -1,0 +1,120 @@
+"""Scanner profiles written in YAML: inline, or a catalogue model with overrides."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.model.sensor import GaussianNoise, LaserProfile, ProfileError
+from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.inputs.node import SpecNode
+
+# Gazebo `<ray>` names; the nested groups are flattened to dotted names ("range.max").
+PROFILE_KEYS = ("samples", "resolution", "min_angle", "max_angle", "range", "update_rate", "noise")
+GROUP_KEYS = {
+    "range": ("min", "max", "resolution"),
+    "noise": ("type", "mean", "stddev"),
+    "pose": ("xyz", "rpy"),
+}
+REQUIRED = ("samples", "min_angle", "max_angle", "range.min", "range.max", "update_rate")
+REQUIRED_FIX = (
+    "a profile needs samples, min_angle, max_angle, range.min, range.max and update_rate; "
+    "write them, or start from a catalogue model with `model: NAME` (`lasertest catalogue` "
+    "lists them)"
+)
+# Names users bring from other tools, and what to write instead.
+ALIAS_HINTS = {
+    "sample_size": "`sample_size` is the LMS1xx xacro name; write `samples`",
+    "min_range": "write `range: {min: ...}` (Gazebo <ray> names)",
+    "max_range": "write `range: {max: ...}` (Gazebo <ray> names)",
+    "range_min": "write `range: {min: ...}` (Gazebo <ray> names)",
+    "range_max": "write `range: {max: ...}` (Gazebo <ray> names)",
+    "angle_min": "`angle_min` is the LaserScan name; write `min_angle` (Gazebo <ray> names)",
+    "angle_max": "`angle_max` is the LaserScan name; write `max_angle` (Gazebo <ray> names)",
+    "scan_time": "write the scan rate as `update_rate` in Hz",
+    "frequency": "write the scan rate as `update_rate` in Hz",
+    "origin": "write the mount as `pose: {xyz: [x, y, z], rpy: [roll, pitch, yaw]}`",
+}
+
+
+@dataclass(frozen=True)
+class Scanner:
+    """One side of a pair: a profile, and the catalogue model or the robot description it was
+    read from, if any."""
+
+    profile: LaserProfile
+    model: str | None
+    source: str | None = None  # the sensor, its description file and revision
+
+    @property
+    def label(self) -> str:
+        """How reports name this scanner."""
+        return self.model or self.source or "inline profile"
+
+
+def read_fields(node: SpecNode, allowed: tuple[str, ...]) -> dict[str, SpecNode]:
+    """The profile fields written in one mapping, nested groups flattened to dotted names."""
+    flat: dict[str, SpecNode] = {}
+    for key, child in node.mapping(allowed, what="scanner fields", hints=ALIAS_HINTS).items():
+        if key not in GROUP_KEYS:
+            flat[key] = child
+            continue
+        for sub, grandchild in child.mapping(GROUP_KEYS[key], what=f"{key} fields").items():
+            flat[f"{key}.{sub}"] = grandchild
+    return flat
+
+
+def build_profile(
+    fields: Mapping[str, SpecNode], where: SpecNode, default_pose: Pose3D
+) -> LaserProfile:
+    """A validated LaserProfile from flattened fields; errors point at the field's own line."""
+    for key in REQUIRED:
+        if key not in fields:
+            raise where.missing(key, REQUIRED_FIX)
+    try:
+        return LaserProfile(
+            samples=fields["samples"].whole_number(),
+            min_angle=fields["min_angle"].number("rad"),
+            max_angle=fields["max_angle"].number("rad"),
+            range_min=fields["range.min"].number("m"),
+            range_max=fields["range.max"].number("m"),
+            update_rate=fields["update_rate"].number("Hz"),
+            resolution=_optional(fields, "resolution", 1.0, "times samples"),
+            range_resolution=_optional(fields, "range.resolution", 0.0, "m"),
+            noise=_noise(fields),
+            pose=_pose(fields, default_pose),
+        )
+    except ProfileError as error:
+        # A value taken from a default (the robot's mount) has no line of its own.
+        culprit = fields.get(error.field, where)
+        field = culprit.field if culprit is not where else f"{where.field}.{error.field}"
+        raise SpecError(culprit.location, field, error.problem, error.fix) from None
+
+
+def _optional(fields: Mapping[str, SpecNode], key: str, default: float, unit: str) -> float:
+    node = fields.get(key)
+    return default if node is None else node.number(unit)
+
+
+def _noise(fields: Mapping[str, SpecNode]) -> GaussianNoise | None:
+    if not any(key.startswith("noise.") for key in fields):
+        return None
+    kind = fields.get("noise.type")
+    if kind is not None and kind.text(what="a noise type", fix="write `gaussian`") != "gaussian":
+        raise kind.error(
+            f"noise type {kind.value!r} is not modelled",
+            "use `type: gaussian` as Gazebo's <ray> does",
+        )
+    return GaussianNoise(
+        mean=_optional(fields, "noise.mean", 0.0, "m"),
+        stddev=_optional(fields, "noise.stddev", 0.0, "m"),
+    )
+
+
+def _pose(fields: Mapping[str, SpecNode], default: Pose3D) -> Pose3D:
+    xyz, rpy = fields.get("pose.xyz"), fields.get("pose.rpy")
+    return Pose3D(
+        xyz=default.xyz if xyz is None else xyz.triple("m"),
+        rpy=default.rpy if rpy is None else rpy.triple("rad"),
+    )

@@ -1,0 +1,47 @@
+"""The robot under test, as far as the gate needs to know it: its laser mount, shape and motion."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pytest_lasertest.model.geometry import FloatArray, Pose3D
+
+
+@dataclass(frozen=True)
+class Robot:
+    """A differential-drive base with one laser, in its ground-level frame (base_footprint)."""
+
+    name: str
+    laser_mount: Pose3D  # where a profile without its own pose is mounted
+    footprint: tuple[tuple[float, float], ...]  # m, convex polygon, counter-clockwise, padded
+    max_linear_velocity: float  # m/s
+    max_linear_acceleration: float  # m/s^2, also its braking deceleration
+    max_angular_velocity: float  # rad/s
+    max_angular_acceleration: float  # rad/s^2
+    nominal_speed: float  # m/s, cruising speed along the nominal path
+    nominal_turn_rate: float  # rad/s, turning in place at waypoints
+    reaction_time: float  # s, from a scan to the first braking command
+    # Its navigation stack's parameters as its configuration sets them: (section, name, value)
+    # with the names of pytest_lasertest.nav.move_base.settings; the rest keep ROS's defaults.
+    navigation: tuple[tuple[str, str, float | bool], ...] = ()
+
+    @property
+    def braking_distance(self) -> float:
+        """How far the robot travels from a detection at nominal speed until it stands (m)."""
+        speed = self.nominal_speed
+        return speed * self.reaction_time + speed**2 / (2.0 * self.max_linear_acceleration)
+
+    def footprint_array(self) -> FloatArray:
+        """The footprint's vertices, shape (V, 2), m."""
+        return np.array(self.footprint, dtype=float)
+
+
+def pad_footprint(
+    points: tuple[tuple[float, float], ...], padding: float
+) -> tuple[tuple[float, float], ...]:
+    """Each vertex moved `padding` away from the origin along x and y, as costmap_2d pads it."""
+    return tuple(
+        (x + float(np.sign(x)) * padding, y + float(np.sign(y)) * padding) for x, y in points
+    )

@@ -1,0 +1,290 @@
+"""Placements, and their exact verification by ray casting: the judge every solver witness faces.
+
+A placement discriminates a pair in one direction when, with every margin at least `margin`:
+- the detector's scan at the anchor instant has a beam that passes inside the obstacle, in range,
+  and the obstacle stands higher than the detector's scan plane;
+- every scan the misser takes up to the placement's `until` instant (at or after the anchor) has
+  every beam pass clear of it from range_min on (nearer, REP 117 reports -inf, which a costmap
+  drops), or the obstacle is lower than the misser's scan plane;
+- the robot, braking from the anchor, stands before touching it;
+- and it obstructs: it reaches into the footprint swept after the robot would have stopped.
+
+The lead is how far the robot drives between the anchor and `until`; a placement is late when
+`until` reaches the robot's last chance to stop, so that the misser reads the obstacle only when it
+is too late, or never: it stays discriminating along the whole approach.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from pytest_lasertest.model.geometry import (
+    Cylinder,
+    FloatArray,
+    Obstacle,
+    bounding_radius,
+    polygon_clearance,
+    ray_distances,
+    segment_clearances,
+)
+from pytest_lasertest.model.route import NominalPath, place, scan_times, swept_polygons
+from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.model.sensor import LaserProfile
+
+Direction = Literal["candidate-misses", "baseline-misses"]
+DIRECTIONS: tuple[Direction, ...] = ("candidate-misses", "baseline-misses")
+Scanner = Literal["baseline", "candidate"]
+# Which scanner must read the obstacle and which must miss it, in each direction.
+ROLES: dict[Direction, tuple[Scanner, Scanner]] = {
+    "candidate-misses": ("baseline", "candidate"),
+    "baseline-misses": ("candidate", "baseline"),
+}
+# PyBullet reports ray hits up to about 1 mm outside exact shapes: keep well clear of every edge.
+REQUIRED_MARGIN = 0.005  # m
+# Beams further than this from the obstacle get a lower bound on their clearance, not its exact
+# value: the verdict needs exact figures near REQUIRED_MARGIN, and culling makes it much faster.
+EXACT_WITHIN = 0.1  # m
+
+
+@dataclass(frozen=True)
+class Scene:
+    """What placements are judged against: both scanners on the robot, and its nominal path."""
+
+    baseline: LaserProfile
+    candidate: LaserProfile
+    robot: Robot
+    path: NominalPath
+
+    def detector(self, direction: Direction) -> LaserProfile:
+        """The scanner that must see the obstacle."""
+        return self.baseline if direction == "candidate-misses" else self.candidate
+
+    def misser(self, direction: Direction) -> LaserProfile:
+        """The scanner that must not."""
+        return self.candidate if direction == "candidate-misses" else self.baseline
+
+    def standstill(self, anchor: float) -> float:
+        """When the robot would stand if it started reacting at `anchor` (s)."""
+        return anchor + self.robot.braking_distance / self.path.speed
+
+    def arrival(self) -> FloatArray:
+        """The robot's footprint at the goal, shape (V, 2), m: an obstacle there would stop any
+        robot short of the goal, whatever its scanner."""
+        goal = self.path.poses_at(np.array([self.path.duration]))[0]
+        return place(self.robot.footprint_array(), goal)
+
+
+@dataclass(frozen=True)
+class Placement:
+    """An obstacle, the direction it discriminates, and the detector's scan that first sees it."""
+
+    obstacle: Obstacle
+    direction: Direction
+    anchor: float  # s, a scan instant of the detector on the nominal path
+    until: float  # s, no earlier than the anchor: the misser misses every scan up to here
+
+
+@dataclass(frozen=True)
+class Verification:
+    """The margins of a placement; each must reach REQUIRED_MARGIN."""
+
+    detection: float  # m, how deep the detector's best beam passes inside, or its height margin
+    concealment: float  # m, how far clear the misser's nearest beam stays, up to the anchor
+    clearance: float  # m, between the obstacle and the robot until it stands, and at the goal
+    obstruction: float  # m, how deep the obstacle reaches into the footprint swept after
+    seen_by_misser_at: tuple[float, ...]  # s, misser scans up to `until` that fail to miss
+    lead: float  # m of path from the anchor to `until`
+    late: bool  # the misser's first scan after `until` comes after the robot's last chance
+
+    @property
+    def margin(self) -> float:
+        """The smallest of the four margins (m)."""
+        return min(self.detection, self.concealment, self.clearance, self.obstruction)
+
+    def holds(self, required: float = REQUIRED_MARGIN) -> bool:
+        """Whether every margin reaches `required`."""
+        return self.margin >= required
+
+
+def verify(scene: Scene, placement: Placement, last: float | None = None) -> Verification:
+    """Judge a placement with exact ray casts and swept footprints; `last` is the obstacle's
+    `last_chance`, if the caller knows it already."""
+    obstacle, direction = placement.obstacle, placement.direction
+    misser = scene.misser(direction)
+    anchor_pose = scene.path.poses_at(np.array([placement.anchor]))
+    detection = float(np.max(hit_margins(scene.detector(direction), anchor_pose, obstacle)))
+    times = scan_times(misser.update_rate, max(placement.until, placement.anchor))
+    concealments = miss_margins(misser, scene.path.poses_at(times), obstacle)
+    stands = scene.standstill(placement.anchor)
+    after = swept_polygons(scene.path, scene.robot.footprint_array(), stands, scene.path.duration)
+    last = last_chance(scene, obstacle) if last is None else last
+    return Verification(
+        detection=detection,
+        concealment=float(np.min(concealments)),
+        clearance=min(
+            stopping_clearance(scene, obstacle, placement.anchor),
+            polygon_clearance(scene.arrival(), obstacle),
+        ),
+        obstruction=max((-polygon_clearance(piece, obstacle) for piece in after), default=-np.inf),
+        seen_by_misser_at=tuple(float(t) for t in times[concealments < REQUIRED_MARGIN]),
+        lead=scene.path.travelled(placement.until) - scene.path.travelled(placement.anchor),
+        late=len(scan_times(misser.update_rate, last)) <= len(times),
+    )
+
+
+def stopping_clearance(scene: Scene, obstacle: Obstacle, time: float) -> float:
+    """How far the robot, braking from `time`, stays from the obstacle until it stands (m)."""
+    footprint = scene.robot.footprint_array()
+    before = swept_polygons(scene.path, footprint, 0.0, scene.standstill(time))
+    return min(polygon_clearance(piece, obstacle) for piece in before)
+
+
+def last_chance(scene: Scene, obstacle: Obstacle, tolerance: float = 1e-4) -> float:
+    """The latest instant from which braking still stops clear of the obstacle (s).
+
+    The path's duration when the obstacle is never in the way. The clearance only shrinks as the
+    braking starts later, so the instant is bracketed to `tolerance` seconds, stepping from the
+    clear side. On a leg the clearance falls no faster than the robot drives (exactly that fast
+    when the obstacle is straight ahead), linearly or convexly, so the first step, clearance /
+    speed, and then secants through two clear instants land on the instant or short of it. A
+    step that overshoots, as at a turn, where the robot sweeps a whole disc at once, or that
+    finds the clearance flat, is followed by a bisection.
+    """
+    low, high = 0.0, scene.path.duration
+    above, below = (stopping_clearance(scene, obstacle, t) for t in (low, high))
+    if below > 0.0 or above <= 0.0:
+        return high if below > 0.0 else low
+    slope, guided = scene.path.speed, True
+    while high - low > tolerance:
+        width = high - low
+        step = above / slope if guided else width / 2.0
+        middle = low + min(max(step, tolerance / 2.0), width - tolerance / 2.0)
+        clearance = stopping_clearance(scene, obstacle, middle)
+        if clearance <= 0.0:
+            high, guided = middle, not guided
+        elif clearance < above:
+            slope, guided = (above - clearance) / (middle - low), True
+            low, above = middle, clearance
+        else:  # flat: beside the obstacle, no slope to follow
+            low, guided = middle, False
+    return low
+
+
+def hit_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:
+    """How surely each beam reads the obstacle in range, shape (T, N), m; negative: it does not.
+
+    A beam reads it when it passes inside the obstacle between range.min and range.max and
+    nothing of the obstacle is nearer than range.min (REP 117 would report -inf); the obstacle
+    must also stand above the scan plane.
+    """
+    origins, directions = profile.rays(poses)
+    shape = origins.shape[:2]
+    inside = -_clearances(origins, directions, profile.range_min, profile.range_max, obstacle)
+    margins = inside.reshape(shape)
+    if profile.range_min > 0:
+        before = _clearances(origins, directions, 0.0, profile.range_min, obstacle)
+        margins = np.minimum(margins, before.reshape(shape))
+    above_plane: FloatArray = np.minimum(margins, obstacle.height - profile.scan_height)
+    return above_plane
+
+
+def miss_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:
+    """How surely each scan misses the obstacle, shape (T,), m; negative: some beam reads it.
+
+    Only the part of a beam from range_min to range_max can give a reading in range (nearer, REP
+    117 reports -inf, which a costmap drops), so a beam misses by that part's clearance. Only
+    beams that come near the obstacle are cast; a scan whose beams all pass EXACT_WITHIN clear
+    gets EXACT_WITHIN, a lower bound.
+    """
+    scans, beams = profile.beams_near(poses, (obstacle.x, obstacle.y), _reach(obstacle))
+    origins = profile.origins(poses)[scans]
+    directions = profile.beam_directions(poses, scans, beams)
+    count = len(scans)
+    clear = segment_clearances(
+        origins,
+        directions,
+        np.full(count, profile.range_min),
+        np.full(count, profile.range_max),
+        obstacle,
+    )
+    nearest = np.full(len(poses), EXACT_WITHIN)
+    np.minimum.at(nearest, scans, clear)
+    lower: FloatArray = np.maximum(nearest, profile.scan_height - obstacle.height)
+    return lower
+
+
+def _reach(obstacle: Obstacle) -> float:
+    """How near a beam must pass the obstacle's centre to come within EXACT_WITHIN of it (m).
+
+    A box's clearance is in its own metric, max(|x'| - a, |y'| - b), which is at least the
+    Euclidean distance to its corners' circle divided by sqrt(2).
+    """
+    slack = EXACT_WITHIN if isinstance(obstacle, Cylinder) else math.sqrt(2.0) * EXACT_WITHIN
+    return bounding_radius(obstacle) + slack
+
+
+def readings(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:
+    """LaserScan ranges of the scans at `poses`, shape (T, N), m: REP 117 -inf / +inf outside."""
+    origins, directions = profile.rays(poses)
+    distances = ray_distances(origins.reshape(-1, 2), directions.reshape(-1, 2), obstacle)
+    ranges = distances.reshape(origins.shape[:2])
+    if obstacle.height <= profile.scan_height:
+        return np.full_like(ranges, np.inf)
+    ranges = np.where(ranges > profile.range_max, np.inf, ranges)
+    out: FloatArray = np.where(ranges < profile.range_min, -np.inf, ranges)
+    return out
+
+
+def _clearances(
+    origins: FloatArray, directions: FloatArray, start: float, end: float, obstacle: Obstacle
+) -> FloatArray:
+    flat_origins, flat_directions = origins.reshape(-1, 2), directions.reshape(-1, 2)
+    count = len(flat_origins)
+    return segment_clearances(
+        flat_origins, flat_directions, np.full(count, start), np.full(count, end), obstacle
+    )
+
+
+Status = Literal["sat", "unsat", "unknown"]
+
+
+@dataclass(frozen=True)
+class Witness:
+    """A verified placement, numbered within its direction."""
+
+    index: int
+    placement: Placement
+    verification: Verification
+    pose: tuple[float, float, float]  # m, m, rad: the robot at the anchor
+
+    @property
+    def id(self) -> str:
+        """`candidate-misses-0`: the direction and the index, as in the item's name."""
+        return f"{self.placement.direction}-{self.index}"
+
+
+@dataclass(frozen=True)
+class DirectionPlan:
+    """What the search found for one direction of a pair."""
+
+    direction: Direction
+    status: Status
+    witnesses: tuple[Witness, ...]
+    explanation: str  # why there are no (more) witnesses; empty when all were found
+
+
+@dataclass(frozen=True)
+class PairPlan:
+    """Both directions of one pair."""
+
+    name: str
+    scene: Scene
+    directions: tuple[DirectionPlan, ...]
+
+    def direction(self, direction: Direction) -> DirectionPlan:
+        """The plan of one direction."""
+        return next(plan for plan in self.directions if plan.direction == direction)

@@ -1,0 +1,331 @@
+"""A rolling-window costmap with the semantics of ROS costmap_2d's obstacle and inflation layers.
+
+Each update does what the ObstacleLayer does with one laser scan:
+
+1. the window moves with the robot by whole cells, keeping what it still covers;
+2. the scan becomes points: with `inf_is_valid`, +inf reads range_max - 1e-4, and only readings
+   with range_min <= r < range_max are kept (laser_geometry's projection);
+3. clearing comes first: the ray from the laser to each point, clipped to the window and to
+   `raytrace_range`, is traced with Bresenham's algorithm and its cells freed, the last cell
+   too, as costmap_2d's bresenham2D does;
+4. marking comes next, so a point's own cell ends lethal: each point nearer the laser than
+   `obstacle_range` marks its cell;
+5. the cells under the robot's footprint are freed.
+
+With `track_unknown_space`, cells never seen are unknown (255), not free, until a ray clears
+them. `costs()` then inflates, as the InflationLayer does: a cell d m from the nearest lethal
+cell costs 253 (inscribed) within the footprint's inscribed radius, 252 exp(-cost_scaling_factor
+(d - inscribed)) out to `inflation_radius`, and keeps its own cost beyond; an unknown cell stays
+unknown unless it lies within the inscribed radius.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from pytest_lasertest.model.geometry import FloatArray, IntArray
+from pytest_lasertest.nav.protocol import LaserScan
+from pytest_lasertest.model.route import place
+
+FREE, INSCRIBED, LETHAL, UNKNOWN = 0, 253, 254, 255
+# costmap_2d's laserScanValidInfCallback: a tenth of a millimetre short of range_max.
+INF_EPSILON = 1e-4  # m
+Grid = npt.NDArray[np.uint8]  # (N, N) costs, indexed [y, x]
+
+
+@dataclass(frozen=True)
+class CostmapSettings:
+    """A costmap's parameters, with costmap_2d's names; the defaults are its own."""
+
+    size: float = 6.0  # m, the rolling window's width and height
+    resolution: float = 0.05  # m per cell
+    obstacle_range: float = 2.5  # m
+    raytrace_range: float = 3.0  # m
+    inf_is_valid: bool = False
+    inflation_radius: float = 0.55  # m
+    cost_scaling_factor: float = 10.0  # 1/m
+    footprint_clearing: bool = True
+    track_unknown_space: bool = False
+    update_frequency: float = 5.0  # Hz: each update takes the latest scan
+
+    @property
+    def cells(self) -> int:
+        """How many cells the window has along each side."""
+        return round(self.size / self.resolution)
+
+
+class Costmap:
+    """The rolling costmap of one robot, updated scan by scan."""
+
+    def __init__(self, settings: CostmapSettings, footprint: FloatArray) -> None:
+        self.settings = settings
+        self.footprint = footprint  # (V, 2) m, counter-clockwise in the base frame
+        self.unseen = UNKNOWN if settings.track_unknown_space else FREE
+        self.grid: Grid = np.full((settings.cells, settings.cells), self.unseen, dtype=np.uint8)
+        self.origin = (0.0, 0.0)  # m, the world position of cell (0, 0)'s lower left corner
+        self.inflation = InflationCost.of(settings, footprint)
+
+    def update(self, scan: LaserScan, robot: tuple[float, float, float]) -> None:
+        """One scan's update, the robot at pose [x, y, yaw] (m, m, rad) in the odom frame."""
+        laser, points = self._observation(scan, robot)
+        self._follow(robot[0], robot[1])
+        self._clear(laser, points)
+        self._mark(laser, points)
+        if self.settings.footprint_clearing:
+            self._free_footprint(robot)
+
+    def cell_of(self, points: FloatArray) -> tuple[IntArray, IntArray, npt.NDArray[np.bool_]]:
+        """The cells (x, y) holding world points (P, 2), and which lie inside the window."""
+        resolution = self.settings.resolution
+        x = np.floor((points[:, 0] - self.origin[0]) / resolution).astype(np.int64)
+        y = np.floor((points[:, 1] - self.origin[1]) / resolution).astype(np.int64)
+        cells = self.settings.cells
+        return x, y, (x >= 0) & (x < cells) & (y >= 0) & (y < cells)
+
+    def centres(self, x: IntArray, y: IntArray) -> FloatArray:
+        """The world positions (K, 2) m of the centres of cells (x, y), (K,) each."""
+        cells = np.column_stack([x, y]).astype(np.float64)
+        centres: FloatArray = (cells + 0.5) * self.settings.resolution + np.array(self.origin)
+        return centres
+
+    def costs(self, columns: slice = slice(None), rows: slice = slice(None)) -> Grid:
+        """The costs of the window's block of `columns` and `rows` (all by default) with the
+        lethal cells inflated, indexed [y, x]."""
+        cells = self.settings.cells
+        (x0, x1, _), (y0, y1, _) = columns.indices(cells), rows.indices(cells)
+        reach = math.ceil(self.settings.inflation_radius / self.settings.resolution)  # cells
+        # Lethal cells up to `reach` outside the block inflate into it.
+        low_x, low_y = max(x0 - reach, 0), max(y0 - reach, 0)
+        padded = self.grid[low_y : min(y1 + reach, cells), low_x : min(x1 + reach, cells)]
+        inflated = self._inflation(padded == LETHAL, reach)
+        inflated = inflated[y0 - low_y : y1 - low_y, x0 - low_x : x1 - low_x]
+        own = self.grid[y0:y1, x0:x1]
+        # The InflationLayer writes over an unknown cell only from the inscribed cost up.
+        over_unknown = np.where(inflated >= INSCRIBED, inflated, UNKNOWN)
+        costs: Grid = np.where(own == UNKNOWN, over_unknown, np.maximum(own, inflated))
+        return costs.astype(np.uint8)
+
+    def clear_outside(self, x: float, y: float, size: float) -> None:
+        """Forget every cell outside the square `size` m wide around (x, y) m, as
+        clear_costmap_recovery resets the obstacle layer: what it forgets is unseen again."""
+        cells = self.settings.cells
+        low_x, low_y, _ = self.cell_of(np.array([[x - size / 2.0, y - size / 2.0]]))
+        high_x, high_y, _ = self.cell_of(np.array([[x + size / 2.0, y + size / 2.0]]))
+        kept = self.grid.copy()
+        self.grid[:] = self.unseen
+        # The cells strictly between the corners' cells are kept, as the recovery keeps them.
+        columns = slice(max(int(low_x[0]) + 1, 0), max(min(int(high_x[0]), cells), 0))
+        rows = slice(max(int(low_y[0]) + 1, 0), max(min(int(high_y[0]), cells), 0))
+        self.grid[rows, columns] = kept[rows, columns]
+
+    def _inflation(self, lethal: npt.NDArray[np.bool_], reach: int) -> Grid:
+        """The InflationLayer's cost of each cell, shape of `lethal`."""
+        distance = lethal_distances(lethal, reach) * self.settings.resolution
+        grid: Grid = self.inflation(distance).astype(np.uint8)
+        return grid
+
+    def _observation(
+        self, scan: LaserScan, robot: tuple[float, float, float]
+    ) -> tuple[tuple[float, float], FloatArray]:
+        """Where the laser is, and the scan's points (P, 2) m, in the odom frame, as costmap_2d
+        projects a scan: +inf at range_max - 1e-4 with `inf_is_valid`, and only readings with
+        range_min <= r < range_max."""
+        ranges, meta = scan.ranges, scan.meta
+        if self.settings.inf_is_valid:
+            ranges = np.where(ranges == np.inf, meta.range_max - INF_EPSILON, ranges)
+        kept = (ranges >= meta.range_min) & (ranges < meta.range_max)
+        projected = LaserScan(scan.stamp, np.where(kept, ranges, np.inf), meta, scan.mount)
+        pose = np.array(robot)
+        laser = place(np.array([scan.mount.xyz[:2]]), pose)[0]
+        return (float(laser[0]), float(laser[1])), place(projected.points_in_base(), pose)
+
+    def _follow(self, x: float, y: float) -> None:
+        """Centre the window on (x, y) by whole cells, keeping the cells it still covers."""
+        resolution, cells = self.settings.resolution, self.settings.cells
+        # costmap_2d centres on (size - 0.5) cells and truncates the shift toward zero.
+        half = (cells - 0.5) * resolution / 2.0
+        shift_x = int((x - half - self.origin[0]) / resolution)
+        shift_y = int((y - half - self.origin[1]) / resolution)
+        if shift_x == 0 and shift_y == 0:
+            return
+        kept = np.full_like(self.grid, self.unseen)
+        source, target = _overlap(shift_x, cells), _overlap(-shift_x, cells)
+        rows_source, rows_target = _overlap(shift_y, cells), _overlap(-shift_y, cells)
+        kept[rows_target, target] = self.grid[rows_source, source]
+        self.grid = kept
+        self.origin = (self.origin[0] + shift_x * resolution, self.origin[1] + shift_y * resolution)
+
+    def _clear(self, laser: tuple[float, float], points: FloatArray) -> None:
+        """Free the cells on each ray from the laser to a point, up to `raytrace_range`."""
+        start_x, start_y, inside = self.cell_of(np.array([laser]))
+        if not inside[0] or not len(points):
+            return
+        end_x, end_y, valid = self.cell_of(self._clipped(laser, points))
+        cells = self.settings.cells
+        # Rays that end in one cell visit the same cells: far out, beams outnumber cells.
+        ends = np.unique(end_x[valid] + end_y[valid] * cells)
+        longest = math.ceil(self.settings.raytrace_range / self.settings.resolution)
+        start = (int(start_x[0]), int(start_y[0]))
+        index = ray_indices(*start, ends % cells, ends // cells, cells, longest)
+        self.grid.reshape(-1)[index] = FREE
+
+    def _clipped(self, laser: tuple[float, float], points: FloatArray) -> FloatArray:
+        """The points moved back along their rays onto the window where they lie beyond it, as
+        costmap_2d's raytraceFreespace does: low edges first, then high ones, a millimetre
+        inside."""
+        (origin_x, origin_y), size = laser, self.settings.cells * self.settings.resolution
+        run_x, run_y = points[:, 0] - origin_x, points[:, 1] - origin_y
+        x, y = points[:, 0].copy(), points[:, 1].copy()
+        low_x, low_y = self.origin
+        high_x, high_y = low_x + size, low_y + size
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = x < low_x
+            y[out], x[out] = origin_y + run_y[out] * (low_x - origin_x) / run_x[out], low_x
+            out = y < low_y
+            x[out], y[out] = origin_x + run_x[out] * (low_y - origin_y) / run_y[out], low_y
+            out = x > high_x
+            y[out] = origin_y + run_y[out] * (high_x - origin_x) / run_x[out]
+            x[out] = high_x - 0.001
+            out = y > high_y
+            x[out] = origin_x + run_x[out] * (high_y - origin_y) / run_y[out]
+            y[out] = high_y - 0.001
+        return np.column_stack([x, y])
+
+    def _mark(self, laser: tuple[float, float], points: FloatArray) -> None:
+        """Mark the cell of each point nearer the laser than `obstacle_range` lethal."""
+        squared = ((points - laser) ** 2).sum(axis=1)
+        near = points[squared < self.settings.obstacle_range**2]
+        x, y, inside = self.cell_of(near)
+        self.grid[y[inside], x[inside]] = LETHAL
+
+    def _free_footprint(self, robot: tuple[float, float, float]) -> None:
+        """Free the cells the footprint at pose [x, y, yaw] covers: each column between its
+        outline's lowest and highest cell, as costmap_2d's convexFillCells does."""
+        corners_x, corners_y, _ = self.cell_of(place(self.footprint, np.array(robot)))
+        # The outline, edge by edge from each corner to the next, stays in the corners' box.
+        left, bottom = int(corners_x.min()), int(corners_y.min())
+        box_x, box_y = corners_x - left, corners_y - bottom
+        width = int(box_x.max()) + 1
+        following = np.roll(np.arange(len(box_x)), -1)
+        outline = ray_indices(box_x, box_y, box_x[following], box_y[following], width)
+        rows, columns = np.divmod(outline, width)
+        low, high = np.full(width, np.iinfo(np.int32).max), np.full(width, -1)
+        np.minimum.at(low, columns, rows)
+        np.maximum.at(high, columns, rows)
+        row = np.arange(int(high.max()) + 1)[:, np.newaxis]
+        covered_rows, covered_columns = np.nonzero((row >= low) & (row <= high))
+        x, y = covered_columns + left, covered_rows + bottom
+        cells = self.settings.cells
+        inside = (x >= 0) & (x < cells) & (y >= 0) & (y < cells)
+        self.grid[y[inside], x[inside]] = FREE
+
+
+@dataclass(frozen=True)
+class InflationCost:
+    """The InflationLayer's cost of a cell d m from the nearest lethal cell: 254 on it, 253
+    within the inscribed radius, 252 exp(-cost_scaling_factor (d - inscribed)) out to the
+    inflation radius, 0 beyond."""
+
+    inscribed: float  # m, the footprint's inscribed radius
+    inflation_radius: float  # m
+    cost_scaling_factor: float  # 1/m
+
+    @classmethod
+    def of(cls, settings: CostmapSettings, footprint: FloatArray) -> InflationCost:
+        """The inflation of a costmap with `settings` around `footprint` (V, 2) m."""
+        # costmap_2d inflates out to a whole number of cells.
+        cells = math.ceil(settings.inflation_radius / settings.resolution)
+        radius = cells * settings.resolution
+        return cls(_inscribed_radius(footprint), radius, settings.cost_scaling_factor)
+
+    def __call__(self, distance: FloatArray) -> FloatArray:
+        """The cost at each distance (m), same shape."""
+        falloff = (INSCRIBED - 1) * np.exp(-self.cost_scaling_factor * (distance - self.inscribed))
+        cost = np.where(distance <= self.inflation_radius, np.floor(falloff), FREE)
+        cost = np.where(distance <= self.inscribed, INSCRIBED, cost)
+        costs: FloatArray = np.where(distance <= 0.0, LETHAL, cost)
+        return costs
+
+
+def ray_indices(
+    start_x: int | IntArray,
+    start_y: int | IntArray,
+    end_x: IntArray,
+    end_y: IntArray,
+    stride: int,
+    longest: int | None = None,
+) -> IntArray:
+    """The cells costmap_2d's raytraceLine visits from a start cell to each end cell (K,), as
+    flat indices x + y * stride into a grid `stride` cells wide, shape (M,): steps along the
+    longer axis, the other stepping when its error wraps, then the last cell; at most
+    `longest` cells of length (scaled along the longer axis). Each ray may start at a cell of
+    its own (K,).
+
+    Every ray is stepped at once: each visited cell is the start, `step` cells along the
+    ray's longer axis and `wraps` along the other, and `wraps` is Bresenham's error count.
+    """
+    dx, dy = end_x - start_x, end_y - start_y
+    along_x = np.abs(dx) >= np.abs(dy)
+    major, minor = np.maximum(np.abs(dx), np.abs(dy)), np.minimum(np.abs(dx), np.abs(dy))
+    steps = major
+    if longest is not None:
+        length = np.hypot(dx, dy)
+        scale = np.minimum(1.0, longest / np.where(length == 0.0, 1.0, length))
+        steps = np.minimum((scale * major).astype(np.int64), major)
+    unit_x, unit_y = np.where(dx > 0, 1, -1), np.where(dy > 0, stride, -stride)
+    counts = steps + 1
+    # int32 halves the time of the per-cell arithmetic; a window holds far fewer cells.
+    step = np.arange(counts.sum(), dtype=np.int32)
+    step -= np.repeat((np.cumsum(counts) - counts).astype(np.int32), counts)
+    wraps = np.repeat((major // 2).astype(np.int32), counts)
+    wraps += step * np.repeat(minor.astype(np.int32), counts)
+    wraps //= np.repeat(np.maximum(major, 1).astype(np.int32), counts)
+    index = step * np.repeat(np.where(along_x, unit_x, unit_y).astype(np.int32), counts)
+    index += wraps * np.repeat(np.where(along_x, unit_y, unit_x).astype(np.int32), counts)
+    origin = np.asarray(start_x + start_y * stride)
+    cells: IntArray = index + (np.repeat(origin, counts) if origin.ndim else origin)
+    return cells
+
+
+def _overlap(shift: int, cells: int) -> slice:
+    """The cells of a window shifted by `shift` cells that the old window also covered."""
+    if shift >= 0:
+        return slice(shift, cells) if shift < cells else slice(0, 0)
+    return slice(0, cells + shift) if -shift < cells else slice(0, 0)
+
+
+def lethal_distances(lethal: npt.NDArray[np.bool_], reach: int) -> FloatArray:
+    """Each cell's distance in cells to the nearest lethal cell, shape (N, N): exact up to
+    `reach`, and more than `reach` (or inf) beyond it.
+
+    Separable: the distance along each column first, then the least of
+    dx^2 + column distance^2 over the columns within `reach` either side.
+    """
+    rows = lethal.shape[0]
+    index = np.arange(rows)[:, np.newaxis]
+    far = rows + reach + 1
+    above = np.maximum.accumulate(np.where(lethal, index, -far), axis=0)
+    below = np.flip(np.minimum.accumulate(np.flip(np.where(lethal, index, 2 * far), 0), 0), 0)
+    column = np.minimum(index - above, below - index).astype(np.float64)
+    column[column > reach] = np.inf
+    squared = column**2
+    best = squared.copy()
+    for shift in range(1, reach + 1):
+        best[:, shift:] = np.minimum(best[:, shift:], squared[:, :-shift] + shift**2)
+        best[:, :-shift] = np.minimum(best[:, :-shift], squared[:, shift:] + shift**2)
+    distance: FloatArray = np.sqrt(best)
+    return distance
+
+
+def _inscribed_radius(footprint: FloatArray) -> float:
+    """The distance (m) from the base origin to the nearest edge of the footprint (V, 2)."""
+    starts, ends = footprint, np.roll(footprint, -1, axis=0)
+    edges = ends - starts
+    lengths = np.hypot(edges[:, 0], edges[:, 1])
+    # The distance to each edge's line: the footprint is convex around its origin.
+    cross = np.abs(edges[:, 0] * starts[:, 1] - edges[:, 1] * starts[:, 0])
+    return float(np.min(cross / lengths))

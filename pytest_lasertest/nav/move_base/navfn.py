@@ -1,0 +1,325 @@
+"""The global planner: a grid planner with the semantics of ROS navfn (NavfnROS), numpy only.
+
+The costmap's costs become navfn's: a cell costing c < 253 costs neutral_cost + cost_factor c
+to enter (truncated to an integer and capped at 253, as navfn stores it in a byte), an unknown
+cell (255) costs 253 with `allow_unknown`, and inscribed (253), lethal (254) and, without
+`allow_unknown`, unknown cells cannot be entered. As NavfnROS does, the potential spreads from
+the robot's cell (whatever it costs: NavfnROS clears the robot's cell first), the plan runs
+back down it from the goal, and a goal no path reaches is
+replaced by the reached cell nearest it within `default_tolerance`.
+
+Deviations from navfn, all deliberate:
+
+- navfn interpolates each cell's potential from its 4 neighbours (an approximation of the
+  eikonal equation) and follows the potential's gradient to a smooth path. Here the potential is
+  the exact 8-connected cheapest-path cost, entering a cell costing its navfn cost times the
+  step's length (1, or sqrt(2) diagonally), so the plan is an optimal chain of cells in
+  0, 45 and 90 degree segments over the same costs.
+- A diagonal step may not cut the corner of a cell that cannot be entered: the plan never
+  touches an obstacle, and the cells reached are those navfn's 4-neighbour spreading reaches.
+- navfn blocks the map's outermost ring of cells and stops spreading once the goal is reached;
+  here every cell of the grid counts, and the potential covers the whole grid.
+- The tolerance window is exactly +-floor(default_tolerance / resolution) cells about the goal
+  along each axis; NavfnROS steps through it in floating point and may miss its last row or
+  column. As in NavfnROS, the nearest reached cell wins, the first in [y, x] order among equals.
+
+The potential is computed in integers (navfn costs times SCALE, diagonal steps rounded), so it is
+exact and deterministic. It is the fixed point of directional min-plus sweeps: along a line of
+cells, d[i] = min(d[i], d[i-1] + w[i]) is a prefix scan, d = C + (running minimum of d - C) with
+C = cumsum(w). The grid is stored flat, each row followed by blocked cells and the grid framed by
+blocked rows; reshaped into rows of width+1, width, width-1 or (transposed) 1 cells, the grid's
+diagonals, columns, anti-diagonals and rows become the columns of the reshaped array, and the
+blocked cells break every line where it would leave the grid.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+from typing import TypeVar
+
+import numpy as np
+import numpy.typing as npt
+
+from pytest_lasertest.model.geometry import IntArray
+from pytest_lasertest.nav.move_base.costmap import INSCRIBED, UNKNOWN
+
+SCALE = 1000  # potential units per navfn cost unit and cell stepped
+UNREACHABLE = int(np.iinfo(np.intp).max)  # the potential of a cell no path reaches
+_Bytes = npt.NDArray[np.uint8]
+_Weights = dict[int, tuple[IntArray, IntArray]]  # flat step -> entry weights (forward, backward)
+_Cell = TypeVar("_Cell", bound=np.generic)
+
+
+@dataclass(frozen=True)
+class NavfnSettings:
+    """NavfnROS's parameters, with its names; defaults as the Husky's planner.yaml sets them."""
+
+    allow_unknown: bool = True  # husky_navigation planner.yaml
+    default_tolerance: float = 0.1  # m, husky_navigation planner.yaml
+    neutral_cost: int = 50  # navfn's COST_NEUTRAL
+    cost_factor: float = 0.8  # navfn's COST_FACTOR
+
+    def __post_init__(self) -> None:
+        # A free step must cost something, or the potential would not fall along the plan.
+        if self.neutral_cost < 1 or self.cost_factor < 0.0 or self.default_tolerance < 0.0:
+            raise ValueError(f"NavfnSettings need neutral_cost >= 1 and no negative value: {self}")
+
+
+def _navfn_costs(costs: npt.ArrayLike, settings: NavfnSettings) -> _Bytes:
+    """navfn's cost (R, C) of entering each cell of the costmap `costs` (R, C); 0: never."""
+    codes = np.asarray(costs)
+    if codes.ndim != 2 or codes.size == 0:
+        raise ValueError(f"the costmap must be a non-empty 2-D grid, not of shape {codes.shape}")
+    if codes.dtype != np.uint8:
+        raise ValueError(f"the costmap must hold costmap_2d's uint8 costs, not {codes.dtype}")
+    every = np.arange(UNKNOWN + 1)
+    navfn = np.minimum(np.floor(settings.neutral_cost + settings.cost_factor * every), INSCRIBED)
+    navfn[INSCRIBED:] = 0
+    if settings.allow_unknown:
+        navfn[UNKNOWN] = INSCRIBED
+    entered: _Bytes = navfn.astype(np.uint8)[codes]
+    return entered
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """The grid stored flat: each row followed by blocked cells, framed by blocked rows."""
+
+    rows: int
+    cols: int
+    width: int  # cells per stored row, the row's and then blocked ones
+    costs: _Bytes  # (B,) navfn costs in the flat layout, 0 where no path may enter
+
+    @classmethod
+    def of(cls, costs: npt.ArrayLike, settings: NavfnSettings) -> _Layout:
+        """The layout of navfn's costs for the costmap `costs` (R, C)."""
+        navfn = _navfn_costs(costs, settings)
+        rows, cols = navfn.shape
+        # At least 3 cells a row, so that the line steps 1, width - 1, width and width + 1 differ;
+        # one row more, so that every line view ends on a whole row of its reshape.
+        width = max(cols + 1, 3)
+        layout = cls(rows, cols, width, np.zeros((rows + 3) * width + 1, dtype=np.uint8))
+        layout.grid(layout.costs)[:] = navfn
+        return layout
+
+    @property
+    def used(self) -> int:
+        """How many cells the framed grid takes; the rest of the buffer only pads its lines."""
+        return (self.rows + 2) * self.width
+
+    def index(self, cell: tuple[int, int]) -> int:
+        """The flat index of cell [x, y]."""
+        return (cell[1] + 1) * self.width + cell[0]
+
+    def lines(self, buffer: IntArray, step: int) -> IntArray:
+        """A view of the flat `buffer` (B,) whose columns are its lines of cells `step` apart."""
+        if step == 1:
+            return buffer[: self.used].reshape(-1, self.width).T
+        count = -(-self.used // step)
+        return buffer[: count * step].reshape(count, step)
+
+    def grid(self, buffer: npt.NDArray[_Cell]) -> npt.NDArray[_Cell]:
+        """A view of the grid's cells (R, C) in the flat `buffer` (B,)."""
+        inner = buffer[self.width : self.width * (self.rows + 1)]
+        return inner.reshape(self.rows, self.width)[:, : self.cols]
+
+    def check(self, cell: tuple[int, int], name: str) -> None:
+        x, y = cell
+        if not (0 <= x < self.cols and 0 <= y < self.rows):
+            raise ValueError(
+                f"the {name} cell [x, y] = {list(cell)} lies outside the costmap of "
+                f"{self.cols} x {self.rows} cells"
+            )
+
+
+def _shifted(mask: npt.NDArray[np.bool_], offset: int) -> npt.NDArray[np.bool_]:
+    """mask[i + offset] at each i, False beyond the ends."""
+    out = np.zeros_like(mask)
+    if offset >= 0:
+        out[: mask.size - offset] = mask[offset:]
+    else:
+        out[-offset:] = mask[:offset]
+    return out
+
+
+def _entry_weights(layout: _Layout, out: IntArray) -> tuple[_Weights, int]:
+    """The cost of entering each flat cell along each step, both ways, written to `out` (5, B),
+    and the blocked cost: it exceeds every real path's, so any sum holding it marks no path."""
+    costs, width = layout.costs, layout.width
+    enterable = costs > 0
+    every = np.arange(INSCRIBED + 1)  # lookup tables keep big temporaries few
+    diagonal_of = np.rint(every * SCALE * math.sqrt(2.0)).astype(np.intp)
+    blocked = (int(np.count_nonzero(enterable)) + 1) * int(diagonal_of[-1]) + 1
+    axis_of = every * SCALE
+    axis_of[0] = diagonal_of[0] = blocked
+    axis = np.take(axis_of, costs, out=out[0])
+    weights: _Weights = {1: (axis, axis), width: (axis, axis)}
+    for turn, forward, backward in ((1, out[1], out[2]), (-1, out[3], out[4])):
+        # From f -/+ (width + turn) into f, the step passes f -/+ width and f -/+ turn.
+        for entry, sign in ((forward, -1), (backward, 1)):
+            np.take(diagonal_of, costs, out=entry)
+            corners = _shifted(enterable, sign * width) & _shifted(enterable, sign * turn)
+            entry[~corners] = blocked
+        weights[width + turn] = (forward, backward)
+    return weights, blocked
+
+
+@dataclass(frozen=True)
+class _Sweep:
+    """Min-plus sweeps along the lines of cells one flat step apart, both ways."""
+
+    line: IntArray  # (M, K) view of the potential: each column a line of cells
+    ahead: IntArray  # (M, K) running sums of the entry weights forward
+    behind: IntArray  # (M, K) running sums of the entry weights backward, to the cell before
+    rows: list[IntArray]  # the M rows of `line`, built once
+
+    @classmethod
+    def along(
+        cls, layout: _Layout, potential: IntArray, step: int, weights: _Weights, out: IntArray
+    ) -> _Sweep:
+        """The sweeps along `step`, their running sums written to `out` (2, B)."""
+        forward, backward = weights[step]
+        ahead, behind = layout.lines(out[0], step), layout.lines(out[1], step)
+        np.cumsum(layout.lines(forward, step), axis=0, out=ahead)
+        entries = layout.lines(backward, step)
+        if backward is forward:
+            np.subtract(ahead, entries, out=behind)
+        else:
+            np.cumsum(entries, axis=0, out=behind)
+            behind -= entries
+        line = layout.lines(potential, step)
+        return cls(line, ahead, behind, list(line))
+
+    def relax(self) -> None:
+        """Forward, d = C + running min of (d - C); back, the same with the backward sums."""
+        line = self.line  # in place: a view of the potential
+        line -= self.ahead
+        _running_min(self.rows)
+        line += self.ahead
+        line += self.behind
+        _running_min(self.rows[::-1])
+        line -= self.behind
+
+
+def _running_min(rows: list[IntArray]) -> None:
+    # A loop over rows, each one vectorised minimum across all the lines: numpy's
+    # minimum.accumulate along axis 0 takes several times as long.
+    for before, row in itertools.pairwise(rows):
+        np.minimum(row, before, out=row)
+
+
+def _flat_potential(layout: _Layout, start: int) -> tuple[IntArray, _Weights, int]:
+    """The potential (B,) from flat cell `start`, with the entry weights and the blocked cost."""
+    # One allocation for the potential, 5 weights and 8 running sums: as 14 arrays of their own
+    # they cost more in fresh-page faults than the sweeps themselves (measured: 400 x 600 cells).
+    work = np.empty((14, layout.costs.size), dtype=np.intp)
+    weights, blocked = _entry_weights(layout, work[1:6])
+    if (layout.costs.size + 2) * blocked >= np.iinfo(np.intp).max:
+        raise ValueError(f"a costmap of {layout.cols} x {layout.rows} cells is too large to plan")
+    potential = work[0]
+    potential.fill(blocked)
+    potential[start] = 0
+    sweeps = [
+        _Sweep.along(layout, potential, step, weights, work[6 + 2 * i : 8 + 2 * i])
+        for i, step in enumerate(weights)
+    ]
+    _settle(potential, sweeps, blocked, int(np.count_nonzero(layout.costs)) + 2)
+    return potential, weights, blocked
+
+
+def _settle(potential: IntArray, sweeps: list[_Sweep], blocked: int, cap: int) -> None:
+    """Sweep all 8 directions until the potential (B,) stops changing.
+
+    A round settles at least one more straight segment of every cheapest path, and a path has
+    fewer segments than there are enterable cells: reaching `cap` rounds is a bug.
+    """
+    total = int(potential.sum())
+    for _ in range(cap):
+        for sweep in sweeps:
+            sweep.relax()
+        # Sums through a blocked cell are no paths. Clamped, they cannot pose a cheapest-path
+        # problem of their own to settle, nor push the sum of the potential past int64.
+        np.minimum(potential, blocked, out=potential)
+        # No cell's potential ever rises, so an unchanged sum means no cell changed.
+        total, before = int(potential.sum()), total
+        if total == before:
+            return
+    raise RuntimeError(f"the navfn potential did not settle in {cap} rounds: a bug")
+
+
+def potential(costs: npt.ArrayLike, start: tuple[int, int], settings: NavfnSettings) -> IntArray:
+    """The cost (R, C) of the cheapest path from cell `start` [x, y] to each cell of `costs` (R, C).
+
+    In navfn cost units per cell stepped, times SCALE; UNREACHABLE where no path leads. The
+    start's own cost is never paid.
+    """
+    layout = _Layout.of(costs, settings)
+    layout.check(start, "start")
+    flat, _, blocked = _flat_potential(layout, layout.index(start))
+    grid = layout.grid(flat)
+    result: IntArray = np.where(grid < blocked, grid, UNREACHABLE)
+    return result
+
+
+def _nearest_reached(
+    potential: IntArray, blocked: int, goal: tuple[int, int], reach: int
+) -> tuple[int, int] | None:
+    """The cell [x, y] nearest `goal` whose potential (R, C) is real, at most `reach` cells off
+    along each axis, as NavfnROS's tolerance search picks it; None if there is none."""
+    x0, y0 = max(goal[0] - reach, 0), max(goal[1] - reach, 0)
+    window = potential[y0 : goal[1] + reach + 1, x0 : goal[0] + reach + 1]
+    ys, xs = np.indices(window.shape)
+    offsets = (xs + x0 - goal[0]) ** 2 + (ys + y0 - goal[1]) ** 2
+    squared = np.where(window < blocked, offsets, UNREACHABLE)
+    best = int(np.argmin(squared))  # the first in [y, x] order among equals
+    if squared.flat[best] == UNREACHABLE:
+        return None
+    y, x = divmod(best, window.shape[1])
+    return x + x0, y + y0
+
+
+def _descend(layout: _Layout, potential: IntArray, weights: _Weights, end: int) -> IntArray:
+    """The cells (K, 2) [x, y] of a cheapest path from the potential's zero to flat cell `end`.
+
+    Each cell's predecessor is the neighbour its potential was reached from, the first of them in
+    a fixed order; the potential (B,) falls strictly along the way, so no cell repeats.
+    """
+    # Off the grid lie the frame's blocked cells (before the first cell, the buffer's blocked
+    # tail, by negative index): valid to read, and never the cheapest.
+    moves = [(-step, forward) for step, (forward, _) in weights.items()]
+    moves += [(step, backward) for step, (_, backward) in weights.items()]
+    path = [end]
+    while potential[path[-1]] > 0:
+        cell = path[-1]
+        offset, _ = min(moves, key=lambda move: int(potential[cell + move[0]] + move[1][cell]))
+        path.append(cell + offset)
+    flat = np.array(path[::-1], dtype=np.intp)
+    return np.column_stack((flat % layout.width, flat // layout.width - 1))
+
+
+def plan_path(
+    costs: npt.ArrayLike,
+    start: tuple[int, int],
+    goal: tuple[int, int],
+    settings: NavfnSettings,
+    resolution: float,
+) -> IntArray | None:
+    """The cells (K, 2) [x, y] of a cheapest path over `costs` (R, C) from `start` to `goal`.
+
+    If no path reaches the goal, the path ends at the reached cell nearest it within
+    `default_tolerance`; None if there is none.
+    `resolution` is in m per cell.
+    """
+    layout = _Layout.of(costs, settings)
+    layout.check(start, "start")
+    layout.check(goal, "goal")
+    if not resolution > 0.0:
+        raise ValueError(f"the resolution must be positive, not {resolution} m per cell")
+    flat, weights, blocked = _flat_potential(layout, layout.index(start))
+    reach = math.floor(settings.default_tolerance / resolution + 1e-9)
+    end = _nearest_reached(layout.grid(flat), blocked, goal, reach)
+    if end is None:
+        return None
+    return _descend(layout, flat, weights, layout.index(end))

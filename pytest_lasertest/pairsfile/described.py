@@ -1,0 +1,152 @@
+"""A scanner a pairs file reads from a robot description:
+`{urdf: robots/r.urdf.xacro, ref: origin/main, sensor: front_laser, args: {...}, packages: {...}}`,
+optionally with profile fields that override what the description says."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.model.sensor import LaserProfile
+from pytest_lasertest.descriptions.lasers import DescriptionFile, Laser, choose_laser, read_lasers
+from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.descriptions.gitref import GitError
+from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.inputs.profile import REQUIRED, build_profile
+from pytest_lasertest.descriptions.readers import AtRevision, WorkingTree, reader_at
+from pytest_lasertest.descriptions.xacro_expand import FileReader
+
+DESCRIPTION_KEYS = ("urdf", "sdf", "ref", "sensor", "args", "packages")
+# How a Gazebo <sensor> writes each required field, for "the sensor sets no ..." messages.
+XML_NAMES = {
+    "samples": "<scan><horizontal><samples>",
+    "min_angle": "<scan><horizontal><min_angle>",
+    "max_angle": "<scan><horizontal><max_angle>",
+    "range.min": "<range><min>",
+    "range.max": "<range><max>",
+    "update_rate": "<update_rate>",
+}
+
+
+@dataclass(frozen=True)
+class DescribedLaser:
+    """A laser read from a description, and how reports name it."""
+
+    profile: LaserProfile
+    label: str  # "front_laser in robots/r.urdf.xacro at origin/main (1a2b3c4)"
+
+
+def is_described(fields: Mapping[str, SpecNode]) -> bool:
+    """Whether a scanner's fields name a description file."""
+    return "urdf" in fields or "sdf" in fields
+
+
+def read_described(node: SpecNode, fields: dict[str, SpecNode]) -> DescribedLaser:
+    """The laser a scanner's `urdf:` (or `sdf:`) names, with the scanner's other profile fields
+    as overrides. An error in the description names the description's line, then this one."""
+    file_node = _file_node(node, fields)
+    here = node.location.path.parent
+    reader = _reader(fields.pop("ref", None), here)
+    description = DescriptionFile(
+        path=Path(os.path.abspath(here / file_node.text(what="a description file"))),
+        reader=reader,
+        args=_args(fields.pop("args", None)),
+        packages=_packages(fields.pop("packages", None), here),
+    )
+    sensor = fields.pop("sensor", None)
+    try:
+        laser = choose_laser(
+            read_lasers(description),
+            sensor.text(what="a sensor name") if sensor else None,
+            sensor or file_node,
+            reader.name(description.path),
+        )
+        profile = laser_profile(laser, fields)
+    except SpecError as error:
+        raise _in_context(error, file_node) from None
+    # Named as the pairs file writes it, which reads the same from any working directory.
+    revision = f" at {reader.revision.label}" if isinstance(reader, AtRevision) else ""
+    return DescribedLaser(profile, f"{laser.name} in {file_node.value}{revision}")
+
+
+def laser_profile(laser: Laser, overrides: Mapping[str, SpecNode]) -> LaserProfile:
+    """The laser's profile, its fields overridden by `overrides` (flattened profile fields)."""
+    fields = {**laser.fields(), **overrides}
+    for key in REQUIRED:
+        if key not in fields:
+            raise laser.node.error(
+                f"the {laser.kind} sensor sets no {XML_NAMES[key]}",
+                f"write it in the <sensor>, or give `{key}:` next to `urdf:` in the pairs file",
+            )
+    # A mount the pairs file gives in full is not composed, so it rescues a sensor whose link
+    # the description leaves unplaced (a Gazebo fragment).
+    overridden = "pose.xyz" in overrides and "pose.rpy" in overrides
+    mount = Pose3D() if overridden else laser.mount().pose
+    return build_profile(fields, laser.node, mount)
+
+
+def _file_node(node: SpecNode, fields: dict[str, SpecNode]) -> SpecNode:
+    if "urdf" in fields and "sdf" in fields:
+        raise fields["sdf"].error(
+            "a scanner names one description: `urdf:` or `sdf:`, not both", "drop one of them"
+        )
+    if "model" in fields:
+        raise fields["model"].error(
+            "a scanner is read from a catalogue `model:` or from a description, not both",
+            "drop `model:`, or drop `urdf:` and write the mount with `pose:`",
+        )
+    return fields.pop("urdf") if "urdf" in fields else fields.pop("sdf")
+
+
+def _reader(ref: SpecNode | None, here: Path) -> FileReader:
+    if ref is None:
+        return WorkingTree()
+    # A ref YAML reads as a number (a short commit id such as 1234567) is still a ref.
+    text = str(ref.value) if isinstance(ref.value, int) else ref.text(what="a git ref")
+    try:
+        return reader_at(text, here)
+    except GitError as error:
+        raise ref.error(error.problem, error.fix) from None
+
+
+def _args(node: SpecNode | None) -> dict[str, str]:
+    """xacro args, NAME: VALUE, as the text `xacro FILE NAME:=VALUE` would pass."""
+    if node is None:
+        return {}
+    args = {}
+    for name, value in node.entries(what="xacro args, NAME: VALUE").items():
+        if isinstance(value.value, bool):
+            args[name] = str(value.value).lower()
+        elif isinstance(value.value, str | int | float):
+            args[name] = str(value.value)
+        else:
+            raise value.error(
+                f"a xacro arg is one value, not {type(value.value).__name__}",
+                f"write `{name}: VALUE`, as `xacro FILE {name}:=VALUE` would take it",
+            )
+    return args
+
+
+def _packages(node: SpecNode | None, here: Path) -> dict[str, Path]:
+    """ROS package name -> its directory, for `$(find PKG)`; relative to the pairs file."""
+    if node is None:
+        return {}
+    return {
+        name: Path(os.path.abspath(here / value.text(what="a package directory")))
+        for name, value in node.entries(what="packages, NAME: DIRECTORY").items()
+    }
+
+
+def _in_context(error: SpecError, file_node: SpecNode) -> SpecError:
+    """The error, saying which scanner of the pairs file read the description."""
+    if error.location.path == file_node.location.path:
+        return error
+    return SpecError(
+        error.location,
+        error.field,
+        f"{error.problem} (read for {file_node.field} at {file_node.location})",
+        error.fix,
+    )

@@ -1,0 +1,182 @@
+"""Pairs files: a robot, a world, settings, constraints, the controller, and named
+baseline/candidate pairs, each with optional pinned placements (recorded failures kept as
+regression tests)."""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.pairsfile.catalogue import Catalogue, load_catalogue
+from pytest_lasertest.pairsfile.constraints import Constraint, read_constraints
+from pytest_lasertest.pairsfile.controller import ControllerChoice, read_controller
+from pytest_lasertest.pairsfile.described import DESCRIPTION_KEYS, is_described, read_described
+from pytest_lasertest.inputs.errors import Location, SpecError
+from pytest_lasertest.pairsfile.navigation import read_navigation
+from pytest_lasertest.inputs.node import SpecNode, read_root
+from pytest_lasertest.pairsfile.placements import PinnedPlacement, read_placements
+from pytest_lasertest.inputs.profile import PROFILE_KEYS, Scanner, build_profile, read_fields
+from pytest_lasertest.pairsfile.robot import read_robot
+from pytest_lasertest.pairsfile.world import World, read_world
+
+SECTIONS = ("robot", "world", "settings", "constraints", "controller", "navigation", "pairs")
+REQUIRED_SECTIONS = ("robot", "world", "pairs")
+SETTINGS_KEYS = ("min_obstacle_size", "max_obstacle_size", "witnesses")
+PAIR_KEYS = ("baseline", "candidate", "placements")
+# Pair names become part of test ids (`file::NAME[...]`), which `::`, `[` and spaces would break.
+MAX_WITNESSES = 20
+PAIR_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*\Z")
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How a pairs file tunes the gate."""
+
+    min_obstacle_size: float = 0.05  # m, the thinnest obstacle the robot must see
+    max_obstacle_size: float = 1.0  # m, the widest obstacle placed
+    witnesses: int = 3  # per pair and direction: one test item each
+
+
+@dataclass(frozen=True)
+class Pair:
+    """A named hardware change: the baseline scanner, the candidate that replaces it, and the
+    placements the pair is always tested on besides the solver's."""
+
+    name: str
+    location: Location
+    baseline: Scanner
+    candidate: Scanner
+    placements: tuple[PinnedPlacement, ...] = ()  # from `placements:`, in the order written
+
+
+@dataclass(frozen=True)
+class PairsFile:
+    """Everything one pairs file asks the gate to check."""
+
+    path: Path
+    robot: Robot
+    world: World
+    pairs: tuple[Pair, ...]
+    settings: Settings = field(default_factory=Settings)
+    constraints: tuple[Constraint, ...] = ()
+    # The file's `controller:`; None leaves the choice to conftest hooks, then the default.
+    controller: ControllerChoice | None = None
+
+
+def load_pairs_file(path: Path) -> PairsFile:
+    """Read and validate a pairs file; any problem is a SpecError naming file, line and field."""
+    root = read_root(
+        path,
+        what="pairs file",
+        needs="robot, world and pairs; start from the annotated example in the README",
+    )
+    sections = root.mapping(SECTIONS, what="pairs-file sections")
+    for key in REQUIRED_SECTIONS:
+        if key not in sections:
+            raise root.missing(
+                key, "a pairs file needs robot, world and pairs; see the example in the README"
+            )
+    robot = read_robot(sections["robot"])
+    if "navigation" in sections:
+        # The file's own parameters come after the robot's, and so win.
+        overrides = read_navigation(sections["navigation"])
+        robot = dataclasses.replace(robot, navigation=robot.navigation + overrides)
+    return PairsFile(
+        path=path,
+        robot=robot,
+        world=read_world(sections["world"]),
+        pairs=_read_pairs(sections["pairs"], load_catalogue(), robot.laser_mount),
+        settings=_read_settings(sections.get("settings")),
+        constraints=read_constraints(sections["constraints"]) if "constraints" in sections else (),
+        controller=read_controller(sections["controller"]) if "controller" in sections else None,
+    )
+
+
+def _read_settings(node: SpecNode | None) -> Settings:
+    if node is None:
+        return Settings()
+    fields = node.mapping(SETTINGS_KEYS, what="settings")
+    defaults = Settings()
+    smallest = _size(fields.get("min_obstacle_size"), defaults.min_obstacle_size)
+    largest = _size(fields.get("max_obstacle_size"), defaults.max_obstacle_size)
+    if largest < smallest:
+        raise fields.get("max_obstacle_size", node).error(
+            f"max_obstacle_size {largest} m is below min_obstacle_size {smallest} m",
+            "make max_obstacle_size at least as large as min_obstacle_size",
+        )
+    count = fields.get("witnesses")
+    witnesses = defaults.witnesses
+    if count is not None:
+        witnesses = count.whole_number()
+        if not 1 <= witnesses <= MAX_WITNESSES:
+            raise count.error(
+                f"{witnesses} witnesses per direction", f"write a number from 1 to {MAX_WITNESSES}"
+            )
+    return Settings(smallest, largest, witnesses)
+
+
+def _size(node: SpecNode | None, default: float) -> float:
+    if node is None:
+        return default
+    if node.number("m") <= 0:
+        raise node.error(f"{node.value} m is no obstacle", "write a positive width in m, e.g. 0.05")
+    return node.number("m")
+
+
+def _read_pairs(node: SpecNode, catalogue: Catalogue, mount: Pose3D) -> tuple[Pair, ...]:
+    entries = node.entries(what="pairs, each `NAME: {baseline: ..., candidate: ...}`")
+    if not entries:
+        raise node.error("there are no pairs", "add one: `NAME: {baseline: ..., candidate: ...}`")
+    return tuple(_read_pair(name, entry, catalogue, mount) for name, entry in entries.items())
+
+
+def _read_pair(name: str, node: SpecNode, catalogue: Catalogue, mount: Pose3D) -> Pair:
+    if not PAIR_NAME.match(name):
+        raise node.error(
+            f"the pair name {name!r} cannot be part of a test id",
+            "use letters, digits, '_', '-' and '.' only, e.g. `blind_spot`",
+        )
+    sides = node.mapping(PAIR_KEYS, what="the two scanners of the pair, and its placements")
+    for side in ("baseline", "candidate"):
+        if side not in sides:
+            raise node.missing(side, f"give the {side} scanner: a profile, or `model: NAME`")
+    return Pair(
+        name,
+        node.location,
+        _read_scanner(sides["baseline"], catalogue, mount),
+        _read_scanner(sides["candidate"], catalogue, mount),
+        read_placements(sides["placements"]) if "placements" in sides else (),
+    )
+
+
+def _read_scanner(node: SpecNode, catalogue: Catalogue, mount: Pose3D) -> Scanner:
+    fields = read_fields(node, ("model", *DESCRIPTION_KEYS, *PROFILE_KEYS, "pose"))
+    if is_described(fields):
+        described = read_described(node, fields)
+        return Scanner(described.profile, None, described.label)
+    for key in DESCRIPTION_KEYS:
+        if key in fields:
+            raise fields[key].error(
+                f"`{key}:` belongs to a scanner read from a robot description",
+                "add `urdf: PATH` (or `sdf: PATH`) to read one, or drop it",
+            )
+    model = fields.pop("model", None)
+    if model is None:
+        return Scanner(build_profile(fields, node, mount), None)
+    entry = catalogue.find(model)
+    try:
+        return Scanner(build_profile({**entry.fields, **fields}, node, mount), entry.key)
+    except SpecError as error:
+        if error.location.path == node.location.path:
+            raise
+        # The overrides clash with a catalogue value: the fix belongs in the pairs file.
+        raise SpecError(
+            node.location,
+            f"{node.field}.{error.field}",
+            f"{error.problem} (model {entry.key!r} sets {error.field} at {error.location})",
+            error.fix,
+        ) from None

@@ -1,0 +1,1 @@
+"""Every text and JSON a person reads: failures, drives, plans, explanations, profiles, the summary."""

@@ -1,0 +1,174 @@
+"""Trials: what one perturbation of a witness does to the two robots, and how it is classified.
+
+A trial moves the witness's obstacle by an offset, checks with the exact ray cast that it still
+discriminates, and drives the candidate through it. Only when the candidate fails is the
+baseline driven on the same placement, to tell a regression (the baseline is fine there) from a
+pre-existing failure (both fail). The policy decides which of them fail the item. Runs come from
+the session's cache, so the shrinker revisiting a scenario costs nothing; after the first
+failure, new simulations are counted against the shrink budget.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+from pytest_lasertest.search.drives import RunCache, scenario
+from pytest_lasertest.search.offsets import Offset, Untested, discriminates, perturbed
+from pytest_lasertest.plugin.options import Policy
+from pytest_lasertest.model.verify import Placement, Scene, Verification, verify
+from pytest_lasertest.model.sensor import LaserProfile
+from pytest_lasertest.sim.client import PhysicsClient
+from pytest_lasertest.sim.scenario import Run
+from pytest_lasertest.pairsfile import Pair, PairsFile
+from pytest_lasertest.pairsfile.controller import ControllerChoice
+
+Classification = Literal["regression", "pre-existing", "improvement", "unchanged"]
+NOT_DISCRIMINATING = "rejected: no longer discriminating"
+BUDGET_SPENT = "not simulated: the shrink budget is spent"
+
+
+def classify(baseline_passed: bool, candidate_passed: bool) -> Classification:
+    """What the change did here: broke it, found it broken, fixed it, or left it as it was."""
+    if baseline_passed != candidate_passed:
+        return "regression" if baseline_passed else "improvement"
+    return "unchanged" if baseline_passed else "pre-existing"
+
+
+@dataclass(frozen=True, eq=False)
+class TrialResult:
+    """One perturbed placement and the runs through it."""
+
+    offset: Offset
+    placement: Placement
+    verification: Verification
+    candidate: Run
+    baseline: Run | None  # driven only when the candidate failed
+
+    @property
+    def classification(self) -> Classification:
+        baseline_passed = self.baseline.passed if self.baseline is not None else True
+        return classify(baseline_passed, self.candidate.passed)
+
+    def fails(self, policy: Policy) -> bool:
+        """Whether the policy fails the item on this trial."""
+        if policy == "regression":
+            return self.classification == "regression"
+        return not self.candidate.passed
+
+    def oracles(self) -> list[str]:
+        """The candidate's failing oracles, by name."""
+        return [name for name, verdict in self.candidate.verdicts.named() if not verdict.passed]
+
+
+class TrialFailed(Exception):
+    """A trial the policy fails; the search shrinks toward the smallest such offset."""
+
+    def __init__(self, result: TrialResult) -> None:
+        super().__init__(result.offset.describe())
+        self.result = result
+
+
+@dataclass(frozen=True)
+class Setting:
+    """Where trials drive: the pairs file, the pair, its controller and the run's seed."""
+
+    spec: PairsFile
+    pair: Pair
+    controller: ControllerChoice
+    seed: int
+    client: PhysicsClient
+    cache: RunCache
+
+
+@dataclass
+class Trials:
+    """The trials of one placement item's search, and what they cost."""
+
+    setting: Setting
+    scene: Scene
+    witness: Placement
+    sizes: tuple[float, float]  # m, the smallest and largest obstacle the pairs file allows
+    policy: Policy
+    shrink_budget: int  # simulations after the first failure
+    simulations: int = field(default=0, init=False)
+    # Simulations up to the candidate's run that first failed, not counting its classification.
+    simulations_to_failure: int | None = field(default=None, init=False)
+    results: dict[Offset, TrialResult] = field(default_factory=dict, init=False)
+    rejections: set[Offset] = field(default_factory=set, init=False)
+    _at_candidate: int = field(default=0, init=False)  # simulations up to the last candidate run
+
+    def __call__(self, offset: Offset) -> str:
+        placement = perturbed(self.witness, offset)
+        if not discriminates(self.scene, placement, self.sizes):
+            self.rejections.add(offset)
+            raise Untested(NOT_DISCRIMINATING)
+        result = self.results.get(offset)
+        if result is None:
+            result = self.results[offset] = self.trial(offset, placement)
+        if result.fails(self.policy):
+            if self.simulations_to_failure is None:
+                self.simulations_to_failure = self._at_candidate
+            raise TrialFailed(result)
+        return _outcome(result)
+
+    def trial(self, offset: Offset, placement: Placement) -> TrialResult:
+        """Drive the candidate through the placement, and the baseline if the candidate fails."""
+        pair = self.setting.pair
+        candidate = self._drive(pair.candidate.profile, placement)
+        self._at_candidate = self.simulations
+        baseline = None if candidate.passed else self._drive(pair.baseline.profile, placement)
+        return TrialResult(offset, placement, verify(self.scene, placement), candidate, baseline)
+
+    @property
+    def examples(self) -> int:
+        """Distinct offsets that discriminated and were driven."""
+        return len(self.results)
+
+    @property
+    def rejected(self) -> int:
+        """Distinct offsets that no longer discriminated."""
+        return len(self.rejections)
+
+    @property
+    def failures(self) -> int:
+        """Distinct offsets the policy fails."""
+        return sum(result.fails(self.policy) for result in self.results.values())
+
+    def count(self, classification: Classification) -> int:
+        """Distinct offsets of one class."""
+        return sum(result.classification == classification for result in self.results.values())
+
+    @property
+    def witness_result(self) -> TrialResult | None:
+        """The trial of the witness itself, if the search drove it."""
+        return self.results.get(Offset())
+
+    @property
+    def rejection_rate(self) -> float:
+        """The share of drawn offsets that no longer discriminated."""
+        drawn = self.examples + self.rejected
+        return self.rejected / drawn if drawn else 0.0
+
+    @property
+    def shrink_simulations(self) -> int:
+        """Simulations spent after the first failure."""
+        if self.simulations_to_failure is None:
+            return 0
+        return self.simulations - self.simulations_to_failure
+
+    def _drive(self, profile: LaserProfile, placement: Placement) -> Run:
+        setting = self.setting
+        world = scenario(setting.spec, profile, (placement.obstacle,), setting.seed)
+        if not setting.cache.knows(world, setting.controller):
+            if self.shrink_simulations >= self.shrink_budget:
+                raise Untested(BUDGET_SPENT)
+            self.simulations += 1
+        return setting.cache.run(world, setting.controller, setting.client)
+
+
+def _outcome(result: TrialResult) -> str:
+    """The event a trial counts as: `passed`, or the candidate's failing oracles and the class."""
+    if result.candidate.passed:
+        return "candidate passed"
+    return f"candidate failed ({', '.join(result.oracles())}): {result.classification}"
