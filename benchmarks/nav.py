@@ -22,8 +22,8 @@ from typing import Any
 from sim import PAPER, ROUTE, SCANNER, SCENES, SIMULATED, START, bare_physics
 
 from pytest_lasertest.model.geometry import Point2D
-from pytest_lasertest.nav.move_base import MoveBase
 from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.nav.move_base import MoveBase
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Scenario, run_scenario
 

@@ -20,13 +20,14 @@ import statistics
 import time
 from pathlib import Path
 
-from pytest_lasertest.model.geometry import Box, Cylinder, FloatArray, Obstacle, Point2D, Pose2D
+from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
 from pytest_lasertest.nav.move_base import MoveBase
 from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.nav.reactive import ReactiveController
+from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.sim.client import PhysicsClient, PhysicsWorld, connected_clients
 from pytest_lasertest.sim.scenario import Scenario, run_scenario
-from pytest_lasertest.pairsfile import load_pairs_file
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")

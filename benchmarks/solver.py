@@ -22,21 +22,16 @@ from pathlib import Path
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D, Pose3D
+from pytest_lasertest.model.geometry import Point2D, Pose2D, Pose3D
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
+from pytest_lasertest.model.plan import Witness
 from pytest_lasertest.model.route import nominal_path, scan_times
-from pytest_lasertest.model.verify import (
-    DIRECTIONS,
-    Direction,
-    Placement,
-    Scene,
-    Witness,
-    readings,
-    verify,
-)
-from pytest_lasertest.solver.plan import DirectionSearch, plan_direction, plan_pair
-from pytest_lasertest.solver.search import MIN_HEIGHT, SearchSettings, anchor_times
+from pytest_lasertest.model.verify import DIRECTIONS, Direction, Placement, Scene, readings, verify
 from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.pairsfile.catalogue import load_catalogue
+from pytest_lasertest.search.plans import plan_for
+from pytest_lasertest.solver.plan import DirectionSearch, plan_direction
+from pytest_lasertest.solver.search import MIN_HEIGHT, SearchSettings, anchor_times
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
@@ -188,7 +183,7 @@ def verify_examples() -> tuple[int, int]:
     for path in sorted(EXAMPLES.glob("*.lasertest.yaml")):
         spec = load_pairs_file(path)
         for pair in spec.pairs:
-            plan = plan_pair(spec, pair)
+            plan = plan_for(spec, pair)
             for direction in plan.directions:
                 for witness in direction.witnesses:
                     verified += checked(plan.scene, witness)

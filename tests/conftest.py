@@ -14,9 +14,9 @@ import pytest_lasertest.plugin.collect  # (see below)
 import pytest_lasertest.solver.plan  # noqa: F401  (see below)
 from pytest_lasertest.model.sensor import LaserProfile
 
-# hypothesis, pytest_lasertest.plugin.collect and the solver (with z3) are imported only to stay loaded
-# across pytester runs: in-process runs drop the modules they imported, numpy cannot be imported
-# twice in one process, and Hypothesis's plugin would re-import hypothesis on every run.
+# hypothesis, pytest_lasertest.plugin.collect and the solver (with z3) are imported only to stay
+# loaded across pytester runs: in-process runs drop the modules they imported, numpy cannot be
+# imported twice in one process, and Hypothesis's plugin would re-import hypothesis on every run.
 pytest_plugins = ["pytester", "tests.corpus"]
 
 REPO = Path(__file__).resolve().parents[1]

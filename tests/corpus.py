@@ -17,12 +17,12 @@ from pathlib import Path
 
 import pytest
 
-from pytest_lasertest.model.geometry import Pose3D
-from pytest_lasertest.reports.description import ReadProfile, read_profile
-from pytest_lasertest.model.sensor import GaussianNoise, LaserProfile
 from pytest_lasertest.descriptions.lasers import DescriptionFile, Laser, read_lasers
-from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.descriptions.profile import ReadProfile, read_profile
 from pytest_lasertest.descriptions.readers import WorkingTree
+from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.model.sensor import GaussianNoise, LaserProfile
 
 DATA = Path(__file__).resolve().parent / "data"
 CORPUS = DATA / "corpus"

@@ -13,12 +13,13 @@ from typing import Any
 import pytest
 
 from pytest_lasertest import cli
-from pytest_lasertest.cli import main
-from pytest_lasertest.reports.explain import explain_scans, explain_text
-from pytest_lasertest.model.geometry import Box
+from pytest_lasertest.cli import doctor, main
+from pytest_lasertest.model.obstacles import Box
+from pytest_lasertest.model.plan import Witness
 from pytest_lasertest.model.route import nominal_path
-from pytest_lasertest.model.verify import Placement, Scene, Verification, Witness
+from pytest_lasertest.model.verify import Placement, Scene, Verification
 from pytest_lasertest.pairsfile import load_pairs_file
+from pytest_lasertest.reports.explain import explain_scans, explain_text
 from tests.conftest import SIZE_PAIR
 
 REQUIRED_MODELS = {
@@ -85,10 +86,10 @@ def test_the_doctor_says_what_to_fix_when_a_check_fails(
         raise ImportError("libz3.so: cannot open shared object file")
 
     checks = tuple(
-        cli.Check(check.name, broken, check.fix) if check.name == "z3" else check
-        for check in cli.CHECKS
+        doctor.Check(check.name, broken, check.fix) if check.name == "z3" else check
+        for check in doctor.CHECKS
     )
-    monkeypatch.setattr(cli, "CHECKS", checks)
+    monkeypatch.setattr(doctor, "CHECKS", checks)
     assert cli.main(["doctor"]) == 1
     output = capsys.readouterr().out
     assert "FAIL  z3: ImportError: libz3.so: cannot open shared object file" in output

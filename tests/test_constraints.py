@@ -9,6 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from pytest_lasertest.inputs.errors import Location, SpecError
+from pytest_lasertest.inputs.node import SpecNode
 from pytest_lasertest.pairsfile.constraints import (
     Arithmetic,
     Call,
@@ -22,8 +24,6 @@ from pytest_lasertest.pairsfile.constraints import (
     parse_formula,
     read_constraint,
 )
-from pytest_lasertest.inputs.errors import Location, SpecError
-from pytest_lasertest.inputs.node import SpecNode
 
 SPEC = Path("f.lasertest.yaml")
 

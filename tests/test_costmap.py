@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.nav.move_base.costmap import (
     FREE,
     INSCRIBED,
@@ -18,7 +19,6 @@ from pytest_lasertest.nav.move_base.costmap import (
     ray_indices,
 )
 from pytest_lasertest.nav.protocol import LaserScan
-from pytest_lasertest.model.sensor import LaserProfile
 from tests.conftest import profile
 
 # Three beams: -90, 0 and +90 degrees, from a laser at the base origin.

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from pytest_lasertest.reports.description import read_profile
+from pytest_lasertest.descriptions.profile import read_profile
 from pytest_lasertest.model.sensor import LaserProfile
 from tests.conftest import commit_everything, git
 from tests.test_bad_input import assert_one_clean_error

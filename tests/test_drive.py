@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from pytest_lasertest.model.geometry import Pose2D
-from pytest_lasertest.sim.client import PhysicsWorld
-from pytest_lasertest.sim.drive import Drive, Twist
 from pytest_lasertest.pairsfile.bundled import bundled_robots
 from pytest_lasertest.pairsfile.robot import load_robot_file
+from pytest_lasertest.sim.client import PhysicsWorld
+from pytest_lasertest.sim.drive import Drive, Twist
 
 HUSKY = load_robot_file(bundled_robots()["husky"])
 TIME_STEPS = (0.005, 0.01, 0.02)  # s

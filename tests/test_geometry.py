@@ -8,12 +8,11 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from pytest_lasertest.model.geometry import (
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.obstacles import (
     Box,
     Cylinder,
-    FloatArray,
     Obstacle,
-    dilated,
     ray_distances,
     segment_clearances,
 )
@@ -234,12 +233,12 @@ def test_a_segment_tangent_to_a_cylinder_has_zero_clearance() -> None:
 
 
 def test_a_dilated_box_keeps_its_centre_yaw_and_height_and_grows_on_every_side() -> None:
-    grown = dilated(TURNED_BOX, 0.25)
+    grown = TURNED_BOX.grown(0.25)
     assert grown == Box(x=0.0, y=0.0, yaw=TURNED_BOX.yaw, length=4.5, width=2.5, height=1.0)
 
 
 def test_a_dilated_cylinder_grows_its_radius_by_the_margin() -> None:
-    assert dilated(AHEAD_CYLINDER, -0.25) == Cylinder(x=5.0, y=0.0, radius=0.75, height=1.0)
+    assert AHEAD_CYLINDER.grown(-0.25) == Cylinder(x=5.0, y=0.0, radius=0.75, height=1.0)
 
 
 @pytest.mark.parametrize(
@@ -248,7 +247,7 @@ def test_a_dilated_cylinder_grows_its_radius_by_the_margin() -> None:
 )
 def test_a_margin_that_empties_the_footprint_is_refused(obstacle: Obstacle, margin: float) -> None:
     with pytest.raises(ValueError, match="no area"):
-        dilated(obstacle, margin)
+        obstacle.grown(margin)
 
 
 # Input checks and vectorisation.
@@ -440,7 +439,7 @@ def test_a_segment_misses_a_dilated_box_exactly_when_its_clearance_exceeds_the_m
         near = rng.random(20) < 0.5
         margins[near] = clearances[near] + rng.choice([-1e-6, 1e-6], size=near.sum())
         for i in np.flatnonzero(margins > 0.98 * deepest):
-            crossed = bool(crosses(one_of(segments, int(i)), dilated(box, margins[i]))[0])
+            crossed = bool(crosses(one_of(segments, int(i)), box.grown(margins[i]))[0])
             assert crossed == (clearances[i] < margins[i])
             outcomes.add(crossed)
     assert outcomes == {True, False}
@@ -455,6 +454,6 @@ def test_a_segment_inside_a_box_crosses_the_box_shrunk_by_half_its_depth(seed: i
         segments = random_segments(rng, 20, box)
         clearances = segment_clearances(*segments, box)
         for i in np.flatnonzero(clearances < -1e-9):
-            assert crosses(one_of(segments, int(i)), dilated(box, clearances[i] / 2))[0]
+            assert crosses(one_of(segments, int(i)), box.grown(clearances[i] / 2))[0]
             crossings += 1
     assert crossings > 20

@@ -14,18 +14,19 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pytest_lasertest.search.drives import drive, solver_path
-from pytest_lasertest.model.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D
-from pytest_lasertest.nav.move_base.costmap import LETHAL
-from pytest_lasertest.nav.move_base import MoveBase
-from pytest_lasertest.nav.protocol import LaserScan, Odometry
-from pytest_lasertest.nav.move_base.settings import NavigationSettings, Parameter
+from pytest_lasertest.model.geometry import Point2D, Pose2D
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.sensor import LaserProfile
+from pytest_lasertest.nav.move_base import MoveBase
+from pytest_lasertest.nav.move_base.costmap import LETHAL
+from pytest_lasertest.nav.move_base.settings import NavigationSettings, Parameter
+from pytest_lasertest.nav.protocol import LaserScan, Odometry
+from pytest_lasertest.pairsfile import load_pairs_file
+from pytest_lasertest.search.drives import drive
+from pytest_lasertest.search.plans import plan_for
 from pytest_lasertest.sim.oracles import Rules
 from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
-from pytest_lasertest.solver.plan import plan_pair
-from pytest_lasertest.pairsfile import load_pairs_file
 from tests.conftest import EXAMPLES
 
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
@@ -146,7 +147,7 @@ def thin_pole() -> Cylinder:
     path the 32-beam robot drives with move_base."""
     size = PAIRS["size"]
     control = drive(PAPER, size.baseline.profile, (), 0, Recorded())
-    plan = plan_pair(PAPER, size, solver_path(PAPER, control))
+    plan = plan_for(PAPER, size, control)
     pole = plan.direction("candidate-misses").witnesses[1].placement.obstacle
     assert isinstance(pole, Cylinder)
     return pole
@@ -198,7 +199,7 @@ def test_the_back_up_recovery_frees_a_robot_too_close_to_turn_and_it_reaches_the
 
 def test_straight_ahead_the_narrower_field_of_view_changes_nothing() -> None:
     blind_spot = PAIRS["blind_spot"]
-    plan = plan_pair(PAPER, blind_spot)
+    plan = plan_for(PAPER, blind_spot)
     assert not plan.direction("candidate-misses").witnesses
     assert not plan.direction("baseline-misses").witnesses
     wide, narrow = run(blind_spot.baseline.profile), run(blind_spot.candidate.profile)
@@ -210,7 +211,7 @@ def test_straight_ahead_the_narrower_field_of_view_changes_nothing() -> None:
 def test_on_a_route_turning_through_the_lost_wedge_the_narrower_field_of_view_differs() -> None:
     turning = PAIRS["blind_spot_turning"]
     world = TURNING.world
-    plan = plan_pair(TURNING, turning)
+    plan = plan_for(TURNING, turning)
     witnesses = plan.direction("candidate-misses").witnesses
     assert witnesses
     obstacles = (witnesses[0].placement.obstacle,)

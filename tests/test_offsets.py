@@ -8,7 +8,10 @@ from functools import cache
 import numpy as np
 import pytest
 
-from pytest_lasertest.model.geometry import Box, Cylinder
+from pytest_lasertest.model.obstacles import Box, Cylinder
+from pytest_lasertest.model.plan import PairPlan, Witness
+from pytest_lasertest.model.verify import Placement
+from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.search.offsets import (
     AXES,
     REACH,
@@ -18,9 +21,7 @@ from pytest_lasertest.search.offsets import (
     offset_box,
     perturbed,
 )
-from pytest_lasertest.model.verify import PairPlan, Placement, Witness
-from pytest_lasertest.solver.plan import plan_pair
-from pytest_lasertest.pairsfile import load_pairs_file
+from pytest_lasertest.search.plans import plan_for
 from tests.conftest import EXAMPLES
 
 SIZES = (0.0507, 1.0)  # m, the paper's pairs file's smallest and largest obstacle
@@ -30,7 +31,7 @@ SIZES = (0.0507, 1.0)  # m, the paper's pairs file's smallest and largest obstac
 def size_plan() -> PairPlan:
     spec = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
     (size,) = (pair for pair in spec.pairs if pair.name == "size")
-    return plan_pair(spec, size)
+    return plan_for(spec, size)
 
 
 def witnesses() -> list[Witness]:

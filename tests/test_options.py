@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 
+from pytest_lasertest.plugin import collection_args
 from pytest_lasertest.plugin.options import (
     default_profile,
     parse_artifacts,
@@ -14,7 +15,6 @@ from pytest_lasertest.plugin.options import (
     parse_profile,
     parse_seed,
 )
-from pytest_lasertest.plugin import collection_args
 
 
 @pytest.mark.parametrize(("text", "seed"), [("0", 0), ("42", 42), ("4294967295", 4294967295)])

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
+from pytest_lasertest.search.budgets import BUDGETS, Budget
 from pytest_lasertest.search.offsets import AXES, Offset, OffsetBox, Untested
-from pytest_lasertest.plugin.options import BUDGETS, Budget
 from pytest_lasertest.search.perturb import search
 
 BOX = OffsetBox(Offset(-0.1, -0.1, -0.2, 0.0, -0.05), Offset(0.1, 0.1, 0.2, 0.02, 0.1))

@@ -23,7 +23,8 @@ from pytest_lasertest.artifacts.picture import (
     build_figure,
     draw_failure,
 )
-from pytest_lasertest.model.geometry import Box, Cylinder, FloatArray, Obstacle, ray_distances
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle, ray_distances
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 HUSKY = np.array([[0.495, 0.335], [-0.495, 0.335], [-0.495, -0.335], [0.495, -0.335]])  # m

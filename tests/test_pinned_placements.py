@@ -10,8 +10,9 @@ import pytest
 import yaml
 
 from pytest_lasertest.artifacts.repro import write_repro
-from pytest_lasertest.model.geometry import Box, Cylinder, Obstacle
-from pytest_lasertest.pairsfile import Pair, PairsFile, SpecError, load_pairs_file
+from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
+from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
 from pytest_lasertest.pairsfile.placements import PinnedPlacement, obstacle_fields
 from tests.conftest import VALID_PAIRS
 from tests.test_bad_input import Case, assert_one_clean_error

@@ -10,7 +10,13 @@ import pytest
 
 from pytest_lasertest.model.geometry import FloatArray
 from pytest_lasertest.nav.move_base.costmap import FREE, LETHAL, UNKNOWN, Costmap, CostmapSettings
-from pytest_lasertest.nav.move_base.recovery import BackUp, ClearCostmap, Pose, RotateInPlace, RotateSettings
+from pytest_lasertest.nav.move_base.recovery import (
+    BackUp,
+    ClearCostmap,
+    Pose,
+    RotateInPlace,
+    RotateSettings,
+)
 
 Mask = npt.NDArray[np.bool_]
 Command = tuple[float, float]

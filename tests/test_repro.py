@@ -16,8 +16,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from pytest_lasertest.artifacts.repro import repro_yaml, write_repro
-from pytest_lasertest.model.geometry import Box, Cylinder, Obstacle
-from pytest_lasertest.pairsfile import SpecError, load_pairs_file
+from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
+from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.pairsfile.placements import PinnedPlacement, obstacle_fields
 from tests.conftest import EXAMPLES, VALID_PAIRS, commit_everything
 from tests.test_bad_input import MY_ROBOT

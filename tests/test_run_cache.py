@@ -6,11 +6,11 @@ from typing import Any
 
 import pytest
 
-from pytest_lasertest.search import drives
-from pytest_lasertest.search.drives import RunCache, scenario
 from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.pairsfile.controller import ControllerChoice
+from pytest_lasertest.search import drives
+from pytest_lasertest.search.drives import RunCache, scenario
 from tests.conftest import EXAMPLES
 
 SPEC = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")

@@ -10,15 +10,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pytest_lasertest.search.drives import drive
-from pytest_lasertest.model.geometry import Box, Cylinder, Obstacle, Point2D, Pose2D
+from pytest_lasertest.model.geometry import Point2D, Pose2D
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
 from pytest_lasertest.nav.protocol import LaserScan
 from pytest_lasertest.nav.reactive import ReactiveController
+from pytest_lasertest.pairsfile import load_pairs_file
+from pytest_lasertest.search.drives import drive
+from pytest_lasertest.search.plans import plan_for
 from pytest_lasertest.sim.client import PhysicsClient, connected_clients
 from pytest_lasertest.sim.oracles import Referee, Rules
 from pytest_lasertest.sim.scenario import Caster, Scenario, run_scenario
-from pytest_lasertest.solver.plan import plan_pair
-from pytest_lasertest.pairsfile import load_pairs_file
 from tests.conftest import EXAMPLES, SIZE_PAIR
 
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
@@ -44,7 +45,7 @@ def scenario(
 def thin_pole() -> Cylinder:
     """The size pair's thin pole: the witness the 32-beam scanner reads and the 16-beam one
     misses for the longest."""
-    plan = plan_pair(PAPER, SIZE)
+    plan = plan_for(PAPER, SIZE)
     poles = [
         witness.placement.obstacle
         for witness in plan.direction("candidate-misses").witnesses

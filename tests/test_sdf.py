@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from pytest_lasertest.artifacts.sdf import world_sdf, write_world
-from pytest_lasertest.model.geometry import Box, Cylinder, Obstacle
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
 
 # Element names from the SDF 1.6 specification (sdformat.org/spec?ver=1.6, and sdf/1.6/*.sdf in
 # the sdformat sources): only those this writer uses.

@@ -8,12 +8,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pytest_lasertest.model.geometry import (
+from pytest_lasertest.model.geometry import Pose2D, Pose3D
+from pytest_lasertest.model.obstacles import (
     Box,
     Cylinder,
     Obstacle,
-    Pose2D,
-    Pose3D,
     ray_distances,
     segment_clearances,
 )

@@ -9,15 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pytest_lasertest.model.geometry import (
-    Box,
-    Cylinder,
-    Point2D,
-    Pose2D,
-    Pose3D,
-    polygon_clearance,
-    segment_clearances,
-)
+from pytest_lasertest.inputs.errors import Location
+from pytest_lasertest.model.geometry import Point2D, Pose2D, Pose3D
+from pytest_lasertest.model.obstacles import Box, Cylinder, polygon_clearance, segment_clearances
 from pytest_lasertest.model.route import nominal_path
 from pytest_lasertest.model.verify import (
     DIRECTIONS,
@@ -32,13 +26,12 @@ from pytest_lasertest.model.verify import (
     stopping_clearance,
     verify,
 )
+from pytest_lasertest.pairsfile import load_pairs_file
+from pytest_lasertest.pairsfile.constraints import Constraint, parse_formula
 from pytest_lasertest.solver.encoding import ObstacleShape
 from pytest_lasertest.solver.plan import plan_direction
 from pytest_lasertest.solver.search import Found, Query, SearchSettings, needed_room
 from pytest_lasertest.solver.seeds import candidates, seeds
-from pytest_lasertest.pairsfile import load_pairs_file
-from pytest_lasertest.pairsfile.constraints import Constraint, parse_formula
-from pytest_lasertest.inputs.errors import Location
 from tests.conftest import EXAMPLES
 
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")

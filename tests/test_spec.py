@@ -6,8 +6,9 @@ from pathlib import Path
 
 import pytest
 
+from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.model.geometry import Point2D, Pose2D, Pose3D
-from pytest_lasertest.pairsfile import SpecError, load_pairs_file
+from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.pairsfile.catalogue import load_catalogue
 from tests.conftest import EXAMPLES, VALID_PAIRS
 

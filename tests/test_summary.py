@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
+from pytest_lasertest.model.policy import classify
 from pytest_lasertest.reports.summary import Summary
-from pytest_lasertest.search.trials import classify
 
 
 @pytest.mark.parametrize(

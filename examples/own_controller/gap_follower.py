@@ -19,8 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, Point2D
-from pytest_lasertest.nav.protocol import Controller, LaserScan, Odometry
 from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.nav.protocol import Controller, LaserScan, Odometry
 
 
 @dataclass(frozen=True)

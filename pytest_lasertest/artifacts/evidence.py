@@ -1,5 +1,7 @@
-"""The artifacts of a failing placement item: a picture, a pairs file that replays the case, a
-Gazebo world and a JSON file with every number, side by side under `--laser-artifacts`.
+"""The artifacts of a failing item under `--laser-artifacts`: for a placement, a picture, a pairs
+file that replays the case, a Gazebo world and a JSON file with every number, side by side; for
+a failure without an obstacle, the picture, the empty world and the numbers; for a lost coverage
+or a witness the ray cast rejects, the numbers. Every JSON file starts with the same header.
 
 The picture shows the moment the candidate failed: its first collision, the instant it was
 judged stuck, or (when it simply ran out of time) its last pose; both robots' trajectories and
@@ -9,7 +11,6 @@ both scanners' beams at that instant, each from its own robot.
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -18,37 +19,24 @@ from pytest_lasertest.artifacts.files import artifact_path, write_json
 from pytest_lasertest.artifacts.picture import BeamFan, FailureFigure, draw_failure
 from pytest_lasertest.artifacts.repro import write_repro
 from pytest_lasertest.artifacts.sdf import write_world
-from pytest_lasertest.search.drives import PairDrive
-from pytest_lasertest.model.geometry import Box, FloatArray, Obstacle, ray_distances
-from pytest_lasertest.search.offsets import OffsetBox
-from pytest_lasertest.model.verify import Witness
-from pytest_lasertest.reports.plan import obstacle_json, witness_json
-from pytest_lasertest.model.sensor import LaserProfile
-from pytest_lasertest.sim.scenario import Run
-from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.inputs.errors import Location
+from pytest_lasertest.model.coverage import CoverageComparison
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.obstacles import Obstacle, ray_distances
+from pytest_lasertest.model.plan import Witness
+from pytest_lasertest.model.sensor import LaserProfile
+from pytest_lasertest.model.verify import Verification
+from pytest_lasertest.pairsfile import Pair, PairsFile, Scanner
 from pytest_lasertest.pairsfile.placements import PinnedPlacement
-from pytest_lasertest.search.trials import TrialResult, Trials
+from pytest_lasertest.reports.failure import PlacementFailure
+from pytest_lasertest.reports.formats import obstacle_json, witness_json
+from pytest_lasertest.search.drives import PairDrive
+from pytest_lasertest.sim.scenario import Run
 
 SUFFIXES = (".png", ".lasertest.yaml", ".world", ".json")
 
 
-@dataclass(frozen=True)
-class Failure:
-    """A failing placement item's case, as the artifacts need it."""
-
-    nodeid: str
-    spec: PairsFile
-    pair: Pair
-    witness: Witness
-    result: TrialResult
-    trials: Trials
-    box: OffsetBox
-    seed: int  # of the run, and of its scan noise
-    run_options: dict[str, object]  # the seed, profile and policy of the run, for the record
-
-
-def write_evidence(directory: Path, failure: Failure) -> tuple[Path, ...]:
+def write_evidence(directory: Path, failure: PlacementFailure) -> tuple[Path, ...]:
     """Write the four artifacts of `failure` below `directory`; returns their paths."""
     png, repro, world, numbers = (
         artifact_path(directory, failure.nodeid, suffix) for suffix in SUFFIXES
@@ -80,7 +68,7 @@ def failure_moment(run: Run) -> tuple[float, str]:
     return end, f"goal not reached by t = {end:.2f} s"
 
 
-def failure_figure(failure: Failure) -> FailureFigure:
+def failure_figure(failure: PlacementFailure) -> FailureFigure:
     """The picture of the candidate's failure at the minimal placement."""
     result = failure.result
     baseline = result.baseline if result.baseline is not None else result.candidate
@@ -140,15 +128,65 @@ def write_control_evidence(
     draw_failure(drive_figure(f"{nodeid}: no obstacle", spec, pair, runs, None), png)
     write_world(world, pair.name, ())
     evidence = {
-        "item": nodeid,
-        "pairs_file": str(spec.path),
-        "pair": pair.name,
-        **run_options,
+        **evidence_header(nodeid, spec, pair, run_options),
         "candidate": _run_json(drives.candidate),
         "baseline": _run_json(drives.baseline),
     }
     write_json(numbers, evidence)
     return png, world, numbers
+
+
+def write_coverage_evidence(
+    directory: Path,
+    nodeid: str,
+    scanners: tuple[Scanner, Scanner],
+    comparison: CoverageComparison,
+    header: dict[str, object],
+) -> Path:
+    """The numbers of a lost coverage: both scanners' profiles and LaserScans, and every change."""
+    baseline, candidate = scanners
+    return write_json(
+        artifact_path(directory, nodeid, ".json"),
+        {
+            **header,
+            "baseline": _scanner_json(baseline),
+            "candidate": _scanner_json(candidate),
+            "coverage": dataclasses.asdict(comparison),
+        },
+    )
+
+
+def write_rejection_evidence(
+    directory: Path,
+    nodeid: str,
+    witness: Witness,
+    verification: Verification,
+    header: dict[str, object],
+) -> Path:
+    """The numbers of a witness the exact ray cast rejects: the witness and every margin."""
+    evidence = {
+        **header,
+        "witness": witness_json(witness),
+        "verification": dataclasses.asdict(verification),
+    }
+    return write_json(artifact_path(directory, nodeid, ".json"), evidence)
+
+
+def evidence_header(
+    nodeid: str, spec: PairsFile, pair: Pair, run_options: dict[str, object]
+) -> dict[str, object]:
+    """What every JSON file of a failure starts with: the item, its pairs file and pair, and
+    the run's seed, profile and policy."""
+    return {"item": nodeid, "pairs_file": str(spec.path), "pair": pair.name, **run_options}
+
+
+def _scanner_json(scanner: Scanner) -> dict[str, object]:
+    profile = scanner.profile
+    return {
+        "model": scanner.model,
+        **dataclasses.asdict(profile),
+        "laserscan": dataclasses.asdict(profile.to_laserscan_meta()),
+    }
 
 
 def beam_fan(
@@ -168,14 +206,11 @@ def beam_fan(
     return BeamFan(name, origins, ends, hits)
 
 
-def evidence_json(failure: Failure) -> dict[str, object]:
+def evidence_json(failure: PlacementFailure) -> dict[str, object]:
     """Every number of the failure."""
     result, trials = failure.result, failure.trials
     return {
-        "item": failure.nodeid,
-        "pairs_file": str(failure.spec.path),
-        "pair": failure.pair.name,
-        **failure.run_options,
+        **evidence_header(failure.nodeid, failure.spec, failure.pair, failure.run_options),
         "witness": witness_json(failure.witness),
         "offset": dataclasses.asdict(result.offset),
         "minimal_obstacle": obstacle_json(result.placement.obstacle),
@@ -222,22 +257,7 @@ def _failure_point(run: Run, pose: FloatArray, obstacle: Obstacle | None) -> tup
     """Where the obstacle was touched (its point nearest the robot), else where the robot was."""
     if run.verdicts.collision.time is None or obstacle is None:
         return float(pose[0]), float(pose[1])
-    return _nearest_point(obstacle, float(pose[0]), float(pose[1]))
-
-
-def _nearest_point(obstacle: Obstacle, x: float, y: float) -> tuple[float, float]:
-    """The point of the obstacle's footprint nearest (x, y)."""
-    dx, dy = x - obstacle.x, y - obstacle.y
-    if not isinstance(obstacle, Box):
-        distance = max(float(np.hypot(dx, dy)), 1e-12)
-        scale = min(1.0, obstacle.radius / distance)
-        return obstacle.x + dx * scale, obstacle.y + dy * scale
-    cos, sin = np.cos(obstacle.yaw), np.sin(obstacle.yaw)
-    along = np.clip(cos * dx + sin * dy, -obstacle.length / 2, obstacle.length / 2)
-    across = np.clip(-sin * dx + cos * dy, -obstacle.width / 2, obstacle.width / 2)
-    return float(obstacle.x + cos * along - sin * across), float(
-        obstacle.y + sin * along + cos * across
-    )
+    return obstacle.nearest_point(float(pose[0]), float(pose[1]))
 
 
 def _triple(pose: FloatArray) -> tuple[float, float, float]:

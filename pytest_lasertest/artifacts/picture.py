@@ -25,7 +25,9 @@ from matplotlib.patches import Circle, Patch, Polygon, Rectangle
 from matplotlib.ticker import MultipleLocator
 
 from pytest_lasertest.artifacts.files import write_atomically
-from pytest_lasertest.model.geometry import Box, FloatArray, Obstacle
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.obstacles import Box, Obstacle
+from pytest_lasertest.model.route import place
 
 BoolArray = npt.NDArray[np.bool_]
 Pose: TypeAlias = tuple[float, float, float]  # m, m, rad
@@ -174,29 +176,10 @@ def _nice_length(span: float) -> float:
 def _outline(obstacle: Obstacle) -> FloatArray:
     """Points whose bounding box is the obstacle's footprint's, shape (4, 2) m."""
     if isinstance(obstacle, Box):
-        half_length, half_width = obstacle.length / 2.0, obstacle.width / 2.0
-        corners = np.array(
-            [
-                [half_length, half_width],
-                [-half_length, half_width],
-                [-half_length, -half_width],
-                [half_length, -half_width],
-            ]
-        )
-        return _placed(corners, (obstacle.x, obstacle.y, obstacle.yaw))
+        return np.array(obstacle.corners())
     offsets = obstacle.radius * np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])
     outline: FloatArray = offsets + np.array([obstacle.x, obstacle.y])
     return outline
-
-
-def _placed(points: FloatArray, pose: Pose) -> FloatArray:
-    """Points given in a frame at `pose`, shape (V, 2), expressed in the world frame."""
-    x, y, yaw = pose
-    cos, sin = math.cos(yaw), math.sin(yaw)
-    # The transpose of Rz(yaw), as the points are row vectors.
-    rotation = np.array([[cos, sin], [-sin, cos]])
-    placed: FloatArray = np.asarray(points, dtype=np.float64) @ rotation + np.array([x, y])
-    return placed
 
 
 def _draw_obstacle(axes: Axes, obstacle: Obstacle) -> Patch:
@@ -224,7 +207,7 @@ def _draw_beams(axes: Axes, fan: BeamFan, colour: str) -> LineCollection:
 
 def _draw_robot(axes: Axes, footprint: FloatArray, pose: Pose, colour: str, label: str) -> Patch:
     """A robot's footprint at `pose`, with a line from its centre showing which way it faces."""
-    outline = _placed(footprint, pose)
+    outline = place(footprint, np.array(pose))
     patch = axes.add_patch(
         Polygon(outline, facecolor=to_rgba(colour, 0.35), edgecolor=colour, label=label, zorder=5)
     )

@@ -17,12 +17,12 @@ from pathlib import Path
 import yaml
 
 from pytest_lasertest.artifacts.files import write_text
-from pytest_lasertest.pairsfile.bundled import bundled_robots
 from pytest_lasertest.inputs.errors import Location, SpecError, display_path
+from pytest_lasertest.inputs.yamlfile import read_text
+from pytest_lasertest.pairsfile.bundled import bundled_robots
 from pytest_lasertest.pairsfile.pairs import Pair, PairsFile
 from pytest_lasertest.pairsfile.placements import PinnedPlacement, obstacle_fields
-from pytest_lasertest.inputs.profile import Scanner
-from pytest_lasertest.inputs.yamlfile import read_text
+from pytest_lasertest.pairsfile.scanners import Scanner
 
 # Settings and constraints only steer the solver, which a pinned placement never asks.
 COPIED_SECTIONS = ("robot", "world", "controller", "navigation")

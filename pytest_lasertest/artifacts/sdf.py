@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from pytest_lasertest.artifacts.files import write_text
-from pytest_lasertest.model.geometry import Box, Obstacle
+from pytest_lasertest.model.obstacles import Box, Obstacle
 
 SDF_VERSION = "1.6"
 STEP = 0.001  # s, the physics step
@@ -90,32 +90,26 @@ def _ground(world: ET.Element) -> None:
 
 def _obstacle(world: ET.Element, name: str, obstacle: Obstacle) -> None:
     """A static model of the obstacle standing on the ground, its shape as collision and visual."""
-    _check_size(obstacle)
-    yaw = obstacle.yaw if isinstance(obstacle, Box) else 0.0
+    shape, sizes = _shape(obstacle)
+    place = (obstacle.x, obstacle.y, obstacle.yaw)
+    # `not 0 < size < inf` also rejects NaN.
+    positive = all(0.0 < size < math.inf for values in sizes.values() for size in values)
+    if not positive or not all(map(math.isfinite, place)):
+        raise ValueError(f"cannot write {obstacle} to a Gazebo world: it needs finite sizes > 0")
     # SDF poses are of the shape's centre, so half the height lifts it onto the ground.
-    pose = (obstacle.x, obstacle.y, obstacle.height / 2.0, 0.0, 0.0, yaw)
+    pose = (obstacle.x, obstacle.y, obstacle.height / 2.0, 0.0, 0.0, obstacle.yaw)
     link = _static_model(world, name, pose)
     for geometry in _shapes(link, OBSTACLE_COLOUR):
-        if isinstance(obstacle, Box):
-            box = ET.SubElement(geometry, "box")
-            _text(box, "size", _numbers((obstacle.length, obstacle.width, obstacle.height)))
-        else:
-            cylinder = ET.SubElement(geometry, "cylinder")
-            _text(cylinder, "radius", _number(obstacle.radius))
-            _text(cylinder, "length", _number(obstacle.height))
+        element = ET.SubElement(geometry, shape)
+        for tag, values in sizes.items():
+            _text(element, tag, _numbers(values))
 
 
-def _check_size(obstacle: Obstacle) -> None:
-    """Raise ValueError unless the obstacle's sizes are positive and finite and its position
-    finite: Gazebo would load anything else as nothing, or not at all."""
+def _shape(obstacle: Obstacle) -> tuple[str, dict[str, tuple[float, ...]]]:
+    """The obstacle's SDF geometry: its element and the sizes it holds, m."""
     if isinstance(obstacle, Box):
-        sizes: tuple[float, ...] = (obstacle.length, obstacle.width, obstacle.height)
-        place: tuple[float, ...] = (obstacle.x, obstacle.y, obstacle.yaw)
-    else:
-        sizes, place = (obstacle.radius, obstacle.height), (obstacle.x, obstacle.y)
-    # `not 0 < size < inf` also rejects NaN.
-    if not all(0.0 < size < math.inf for size in sizes) or not all(map(math.isfinite, place)):
-        raise ValueError(f"cannot write {obstacle} to a Gazebo world: it needs finite sizes > 0")
+        return "box", {"size": (obstacle.length, obstacle.width, obstacle.height)}
+    return "cylinder", {"radius": (obstacle.radius,), "length": (obstacle.height,)}
 
 
 def _static_model(world: ET.Element, name: str, pose: tuple[float, ...]) -> ET.Element:

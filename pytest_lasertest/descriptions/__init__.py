@@ -1,1 +1,2 @@
-"""Robot descriptions: URDF, xacro and SDF lasers with their mounts, read from the working tree or a git revision."""
+"""Robot descriptions: URDF, xacro and SDF lasers with their mounts, read from the working
+tree or at a git revision."""

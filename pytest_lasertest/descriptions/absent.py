@@ -12,10 +12,10 @@ import re
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 
-from pytest_lasertest.inputs.errors import Location, SpecError
 from pytest_lasertest.descriptions.laser_block import LASER_TYPES, is_laser
 from pytest_lasertest.descriptions.xacro_expand import origin
 from pytest_lasertest.descriptions.xmlfile import XmlElement
+from pytest_lasertest.inputs.errors import Location, SpecError
 
 # xacro args whose names suggest a laser, and among them those that switch something on.
 LASER_ARG = re.compile(r"laser|lidar|scan|lms|hokuyo|ust|sick", re.IGNORECASE)

@@ -10,8 +10,8 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 
-from pytest_lasertest.inputs.node import SpecNode
 from pytest_lasertest.descriptions.xmlfile import XmlElement
+from pytest_lasertest.inputs.node import SpecNode
 
 LASER_TYPES = ("ray", "gpu_ray", "lidar", "gpu_lidar")
 # Flattened profile field -> where the block writes it, then the LMS1xx alias.

@@ -13,9 +13,9 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.descriptions.laser_block import Locate
 from pytest_lasertest.descriptions.xmlfile import XmlElement
+from pytest_lasertest.model.geometry import Pose3D
 
 FOOTPRINT = "base_footprint"
 POSE_FIX = "write six numbers: x y z (m) roll pitch yaw (rad)"

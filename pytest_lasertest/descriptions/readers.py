@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.descriptions.gitref import GitRevision, open_revision
+from pytest_lasertest.inputs.errors import display_path
 
 
 @dataclass(frozen=True)

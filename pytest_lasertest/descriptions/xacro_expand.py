@@ -24,8 +24,8 @@ from pathlib import Path
 from typing import IO, Protocol
 from xml.sax.saxutils import quoteattr
 
-from pytest_lasertest.inputs.errors import Location, SpecError
 from pytest_lasertest.descriptions.xmlfile import XmlElement, parse_xml
+from pytest_lasertest.inputs.errors import Location, SpecError
 
 XACRO_FIX = "run `xacro FILE` by hand to see the problem, then fix the description"
 # The attribute that marks each element xacro reads with the file and line that wrote it.

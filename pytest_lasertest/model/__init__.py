@@ -1,1 +1,2 @@
-"""The domain: geometry, scanners, the robot, its route, the exact verifier, coverage and policy. numpy only."""
+"""The domain: geometry, obstacles, scanners, the robot and its route, the exact verifier, the
+plan's result types, coverage and policy. numpy only."""

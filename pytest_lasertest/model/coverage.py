@@ -13,7 +13,8 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from pytest_lasertest.model.sensor import FULL_TURN, LaserProfile
+from pytest_lasertest.model.geometry import FULL_TURN, wrap_angle
+from pytest_lasertest.model.sensor import LaserProfile
 
 ANGLE_TOLERANCE = 1e-6  # rad, below any scanner's angular accuracy
 LENGTH_TOLERANCE = 1e-9  # m
@@ -91,7 +92,7 @@ def sector_difference(kept: Sector, removed: Sector) -> list[Sector]:
     for low in (offset, offset - FULL_TURN):
         pieces = [part for piece in pieces for part in _cut(piece, low, low + removed.extent)]
     return [
-        Sector(_wrap(kept.start + low), high - low)
+        Sector(wrap_angle(kept.start + low), high - low)
         for low, high in pieces
         if high - low > ANGLE_TOLERANCE
     ]
@@ -113,10 +114,6 @@ def _cut(piece: tuple[float, float], low: float, high: float) -> list[tuple[floa
     return [
         part for part in ((start, min(stop, low)), (max(start, high), stop)) if part[1] > part[0]
     ]
-
-
-def _wrap(angle: float) -> float:
-    return (angle + math.pi) % FULL_TURN - math.pi
 
 
 def _field_of_view(

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D
+from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D, wrap_angle
 
 # While turning in place the footprint sweeps (part of) a disc; the gate takes the regular polygon
 # around that disc with this many sides, so that every swept region is a convex polygon.
@@ -120,7 +120,7 @@ def nominal_path(
     here, heading, clock = Point2D(start.x, start.y), start.yaw, 0.0
     for waypoint in route:
         bearing = math.atan2(waypoint.y - here.y, waypoint.x - here.x)
-        angle = (bearing - heading + math.pi) % (2.0 * math.pi) - math.pi
+        angle = wrap_angle(bearing - heading)
         if abs(angle) > MIN_TURN:
             segments.append(Turn(here, heading, angle, clock))
             clock += abs(angle) / turn_rate

@@ -13,9 +13,8 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import FloatArray, IntArray, Pose3D, wrap_angle
+from pytest_lasertest.model.geometry import FULL_TURN, FloatArray, IntArray, Pose3D, wrap_angles
 
-FULL_TURN = 2.0 * math.pi  # rad
 # Gazebo descriptions write a full turn as 6.28319, a little more than 2 pi.
 FULL_TURN_SLACK = 1e-4  # rad
 # The gate models a horizontal scan plane; Husky descriptions write roll = 3.14159, not pi.
@@ -144,7 +143,7 @@ class LaserProfile:
         distance = np.hypot(offsets[:, 0], offsets[:, 1])
         with np.errstate(divide="ignore"):
             half = np.where(distance > reach, np.arcsin(np.minimum(reach / distance, 1.0)), np.pi)
-        low = wrap_angle(np.arctan2(offsets[:, 1], offsets[:, 0]) - poses[:, 2] - half)
+        low = wrap_angles(np.arctan2(offsets[:, 1], offsets[:, 0]) - poses[:, 2] - half)
         first = np.searchsorted(ring, low, "left")
         counts = np.minimum(np.searchsorted(ring, low + 2.0 * half, "right") - first, len(angles))
         scans = np.repeat(np.arange(len(poses)), counts)
@@ -223,7 +222,7 @@ def _directions_in_base(pose: Pose3D, angles: FloatArray) -> FloatArray:
     """Laser-frame beam angles, shape (N,), turned into base-frame angles, shape (N,), rad."""
     in_laser = np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)])
     in_base = pose.rotation() @ in_laser
-    return wrap_angle(np.arctan2(in_base[1], in_base[0]))
+    return wrap_angles(np.arctan2(in_base[1], in_base[0]))
 
 
 def _check_finite(profile: LaserProfile) -> None:

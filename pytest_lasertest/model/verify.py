@@ -16,23 +16,20 @@ is too late, or never: it stays discriminating along the whole approach.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import (
-    Cylinder,
-    FloatArray,
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.obstacles import (
     Obstacle,
-    bounding_radius,
     polygon_clearance,
     ray_distances,
     segment_clearances,
 )
-from pytest_lasertest.model.route import NominalPath, place, scan_times, swept_polygons
 from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.model.route import NominalPath, place, scan_times, swept_polygons
 from pytest_lasertest.model.sensor import LaserProfile
 
 Direction = Literal["candidate-misses", "baseline-misses"]
@@ -42,6 +39,10 @@ Scanner = Literal["baseline", "candidate"]
 ROLES: dict[Direction, tuple[Scanner, Scanner]] = {
     "candidate-misses": ("baseline", "candidate"),
     "baseline-misses": ("candidate", "baseline"),
+}
+# Which scanner reads the obstacle in each direction, as reports name it.
+DETECTED_BY: dict[Direction, Scanner] = {
+    direction: detector for direction, (detector, _) in ROLES.items()
 }
 # PyBullet reports ray hits up to about 1 mm outside exact shapes: keep well clear of every edge.
 REQUIRED_MARGIN = 0.005  # m
@@ -200,7 +201,9 @@ def miss_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -
     beams that come near the obstacle are cast; a scan whose beams all pass EXACT_WITHIN clear
     gets EXACT_WITHIN, a lower bound.
     """
-    scans, beams = profile.beams_near(poses, (obstacle.x, obstacle.y), _reach(obstacle))
+    scans, beams = profile.beams_near(
+        poses, (obstacle.x, obstacle.y), obstacle.within(EXACT_WITHIN)
+    )
     origins = profile.origins(poses)[scans]
     directions = profile.beam_directions(poses, scans, beams)
     count = len(scans)
@@ -215,16 +218,6 @@ def miss_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -
     np.minimum.at(nearest, scans, clear)
     lower: FloatArray = np.maximum(nearest, profile.scan_height - obstacle.height)
     return lower
-
-
-def _reach(obstacle: Obstacle) -> float:
-    """How near a beam must pass the obstacle's centre to come within EXACT_WITHIN of it (m).
-
-    A box's clearance is in its own metric, max(|x'| - a, |y'| - b), which is at least the
-    Euclidean distance to its corners' circle divided by sqrt(2).
-    """
-    slack = EXACT_WITHIN if isinstance(obstacle, Cylinder) else math.sqrt(2.0) * EXACT_WITHIN
-    return bounding_radius(obstacle) + slack
 
 
 def readings(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:
@@ -247,44 +240,3 @@ def _clearances(
     return segment_clearances(
         flat_origins, flat_directions, np.full(count, start), np.full(count, end), obstacle
     )
-
-
-Status = Literal["sat", "unsat", "unknown"]
-
-
-@dataclass(frozen=True)
-class Witness:
-    """A verified placement, numbered within its direction."""
-
-    index: int
-    placement: Placement
-    verification: Verification
-    pose: tuple[float, float, float]  # m, m, rad: the robot at the anchor
-
-    @property
-    def id(self) -> str:
-        """`candidate-misses-0`: the direction and the index, as in the item's name."""
-        return f"{self.placement.direction}-{self.index}"
-
-
-@dataclass(frozen=True)
-class DirectionPlan:
-    """What the search found for one direction of a pair."""
-
-    direction: Direction
-    status: Status
-    witnesses: tuple[Witness, ...]
-    explanation: str  # why there are no (more) witnesses; empty when all were found
-
-
-@dataclass(frozen=True)
-class PairPlan:
-    """Both directions of one pair."""
-
-    name: str
-    scene: Scene
-    directions: tuple[DirectionPlan, ...]
-
-    def direction(self, direction: Direction) -> DirectionPlan:
-        """The plan of one direction."""
-        return next(plan for plan in self.directions if plan.direction == direction)

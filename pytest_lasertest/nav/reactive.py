@@ -18,9 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import FloatArray, Point2D
-from pytest_lasertest.nav.protocol import LaserScan, Odometry
+from pytest_lasertest.model.geometry import FloatArray, Point2D, wrap_angle
 from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.nav.protocol import LaserScan, Odometry
 
 
 @dataclass(frozen=True)
@@ -126,7 +126,7 @@ class ReactiveController:
             self.waypoint += 1
             self._aligning = True
         target = self.route[self.waypoint]
-        return _wrapped(math.atan2(target.y - here[1], target.x - here[0]) - odometry.yaw)
+        return wrap_angle(math.atan2(target.y - here[1], target.x - here[0]) - odometry.yaw)
 
     def _reached(self, here: tuple[float, float]) -> bool:
         """Whether the robot at `here` is done with the current waypoint: within the goal
@@ -165,7 +165,7 @@ class ReactiveController:
             return int(np.argmax(room))
         cost = np.abs(self._headings - error)
         if self._last_course is not None:
-            turned = _wrapped(yaw - self._last_course)
+            turned = wrap_angle(yaw - self._last_course)
             change = np.abs(self._headings + turned)
             if abs(turned) + settings.widest_swerve > math.pi:
                 # A change past half a turn is the shorter way round.
@@ -173,12 +173,6 @@ class ReactiveController:
             cost += settings.course_keeping * change
         np.putmask(cost, ~clear, np.inf)
         return int(np.argmin(cost))
-
-
-def _wrapped(angle: float) -> float:
-    """The angle in [-pi, pi) rad: `geometry.wrap_angle` for one float, without the cost of a
-    numpy call at every scan."""
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
 def _scan_offset(scan: LaserScan) -> float:

@@ -8,11 +8,12 @@ from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
+from pytest_lasertest.inputs.node import SpecNode, read_root
+from pytest_lasertest.inputs.profile import build_profile
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.pairsfile.bundled import LIDARS_DIR
-from pytest_lasertest.inputs.node import SpecNode, read_root
-from pytest_lasertest.inputs.profile import PROFILE_KEYS, build_profile, read_fields
+from pytest_lasertest.pairsfile.scanners import PROFILE_KEYS, read_fields
 
 
 @dataclass(frozen=True)

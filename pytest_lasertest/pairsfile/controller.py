@@ -22,9 +22,9 @@ from pathlib import Path
 from types import ModuleType
 from typing import cast
 
-from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.inputs.errors import Location, SpecError, display_path
 from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.nav.protocol import ControllerFactory
 
 # The controller of a pairs file that names none (and whose conftest hooks choose none).
 DEFAULT_CONTROLLER = "move_base"

@@ -9,26 +9,16 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from pytest_lasertest.model.geometry import Pose3D
-from pytest_lasertest.model.sensor import LaserProfile
-from pytest_lasertest.descriptions.lasers import DescriptionFile, Laser, choose_laser, read_lasers
-from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.descriptions.gitref import GitError
-from pytest_lasertest.inputs.node import SpecNode
-from pytest_lasertest.inputs.profile import REQUIRED, build_profile
+from pytest_lasertest.descriptions.lasers import DescriptionFile, choose_laser, read_lasers
+from pytest_lasertest.descriptions.profile import laser_profile
 from pytest_lasertest.descriptions.readers import AtRevision, WorkingTree, reader_at
 from pytest_lasertest.descriptions.xacro_expand import FileReader
+from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.model.sensor import LaserProfile
 
 DESCRIPTION_KEYS = ("urdf", "sdf", "ref", "sensor", "args", "packages")
-# How a Gazebo <sensor> writes each required field, for "the sensor sets no ..." messages.
-XML_NAMES = {
-    "samples": "<scan><horizontal><samples>",
-    "min_angle": "<scan><horizontal><min_angle>",
-    "max_angle": "<scan><horizontal><max_angle>",
-    "range.min": "<range><min>",
-    "range.max": "<range><max>",
-    "update_rate": "<update_rate>",
-}
 
 
 @dataclass(frozen=True)
@@ -70,22 +60,6 @@ def read_described(node: SpecNode, fields: dict[str, SpecNode]) -> DescribedLase
     # Named as the pairs file writes it, which reads the same from any working directory.
     revision = f" at {reader.revision.label}" if isinstance(reader, AtRevision) else ""
     return DescribedLaser(profile, f"{laser.name} in {file_node.value}{revision}")
-
-
-def laser_profile(laser: Laser, overrides: Mapping[str, SpecNode]) -> LaserProfile:
-    """The laser's profile, its fields overridden by `overrides` (flattened profile fields)."""
-    fields = {**laser.fields(), **overrides}
-    for key in REQUIRED:
-        if key not in fields:
-            raise laser.node.error(
-                f"the {laser.kind} sensor sets no {XML_NAMES[key]}",
-                f"write it in the <sensor>, or give `{key}:` next to `urdf:` in the pairs file",
-            )
-    # A mount the pairs file gives in full is not composed, so it rescues a sensor whose link
-    # the description leaves unplaced (a Gazebo fragment).
-    overridden = "pose.xyz" in overrides and "pose.rpy" in overrides
-    mount = Pose3D() if overridden else laser.mount().pose
-    return build_profile(fields, laser.node, mount)
 
 
 def _file_node(node: SpecNode, fields: dict[str, SpecNode]) -> SpecNode:

@@ -10,8 +10,8 @@ with ROS's parameter names:
 
 from __future__ import annotations
 
-from pytest_lasertest.nav.move_base.settings import Parameter, parameter_types
 from pytest_lasertest.inputs.node import SpecNode, read_root
+from pytest_lasertest.nav.move_base.settings import Parameter, parameter_types
 
 # A speed that may be negative: DWA's least forward speed reverses below zero.
 MAY_BE_NEGATIVE = frozenset({"min_vel_x"})

@@ -9,18 +9,19 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from pytest_lasertest.inputs.errors import Location, SpecError
+from pytest_lasertest.inputs.node import SpecNode, read_root
+from pytest_lasertest.inputs.profile import build_profile
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.pairsfile.catalogue import Catalogue, load_catalogue
 from pytest_lasertest.pairsfile.constraints import Constraint, read_constraints
 from pytest_lasertest.pairsfile.controller import ControllerChoice, read_controller
 from pytest_lasertest.pairsfile.described import DESCRIPTION_KEYS, is_described, read_described
-from pytest_lasertest.inputs.errors import Location, SpecError
 from pytest_lasertest.pairsfile.navigation import read_navigation
-from pytest_lasertest.inputs.node import SpecNode, read_root
 from pytest_lasertest.pairsfile.placements import PinnedPlacement, read_placements
-from pytest_lasertest.inputs.profile import PROFILE_KEYS, Scanner, build_profile, read_fields
 from pytest_lasertest.pairsfile.robot import read_robot
+from pytest_lasertest.pairsfile.scanners import PROFILE_KEYS, Scanner, read_fields
 from pytest_lasertest.pairsfile.world import World, read_world
 
 SECTIONS = ("robot", "world", "settings", "constraints", "controller", "navigation", "pairs")

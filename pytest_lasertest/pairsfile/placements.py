@@ -18,10 +18,10 @@ import dataclasses
 import difflib
 from dataclasses import dataclass
 
-from pytest_lasertest.model.geometry import Box, Cylinder, Obstacle
-from pytest_lasertest.model.verify import DIRECTIONS, Direction
 from pytest_lasertest.inputs.errors import Location
 from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
+from pytest_lasertest.model.verify import DIRECTIONS, Direction
 
 PLACEMENT_KEYS = ("obstacle", "seed", "direction")
 SHAPES: dict[str, type[Box] | type[Cylinder]] = {"box": Box, "cylinder": Cylinder}

@@ -5,11 +5,11 @@ from __future__ import annotations
 import difflib
 from pathlib import Path
 
+from pytest_lasertest.inputs.node import SpecNode, read_root
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import Robot, pad_footprint
 from pytest_lasertest.pairsfile.bundled import ROBOT_FILE, bundled_robots
 from pytest_lasertest.pairsfile.navigation import load_navigation_file
-from pytest_lasertest.inputs.node import SpecNode, read_root
 
 REQUIRED_KEYS = (
     "name",

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from pytest_lasertest.model.geometry import Point2D, Pose2D
 from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.model.geometry import Point2D, Pose2D
 
 WORLD_KEYS = ("start", "goal", "route", "time_limit")
 # Closer than this, two waypoints are one: the robot cannot tell them apart.

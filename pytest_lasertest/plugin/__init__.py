@@ -1,8 +1,9 @@
-"""The pytest entry point: options, configuration, and the hooks the plugin adds (hooks.py).
+"""The pytest entry point: options, configuration, the hooks the plugin adds (`hookspecs.py`),
+and the collection of pairs files.
 
-It imports only the option parsers, the session object and the hook specifications: the
-collection code, numpy and YAML load when pytest first meets a pairs file, so test runs without
-one pay nothing for the plugin.
+It imports only the option parsers and the session object (`session.py`), which owns the run's
+state: the collection code, numpy and YAML load when pytest first meets a pairs file, so test runs
+without one pay nothing for the plugin.
 """
 
 from __future__ import annotations
@@ -13,7 +14,6 @@ from pathlib import Path
 import pytest
 
 from pytest_lasertest.plugin.options import (
-    OPTIONS_KEY,
     LaserOptions,
     default_profile,
     fresh_seed,
@@ -24,10 +24,7 @@ from pytest_lasertest.plugin.options import (
     parse_profile,
     parse_seed,
 )
-from pytest_lasertest.plugin.session import UNCHANGED_KEY, LaserSession, XdistHooks
-from pytest_lasertest.reports.summary import Unchanged
-
-SEED_KEY = "lasertest_seed"
+from pytest_lasertest.plugin.session import SEED_INPUT, LaserSession, XdistHooks
 
 
 def pytest_addhooks(pluginmanager: pytest.PytestPluginManager) -> None:
@@ -110,14 +107,23 @@ def pytest_configure(config: pytest.Config) -> None:
     named = parse_pairs(config.getoption("laser_pairs"), here, "--laser-pairs")
     ini_paths: list[Path] = config.getini("laser_pairs")
     always = parse_pairs(map(str, ini_paths), config.rootpath, "laser_pairs (ini)")
-    options = read_options(config, named + always)
-    config.stash[OPTIONS_KEY] = options
+    session = LaserSession(read_options(config, named + always))
+    config.stash[LaserSession.key] = session
     explicit = config.args_source == pytest.Config.ArgsSource.ARGS
     config.args = collection_args(config.args, explicit, named, always, here)
-    unchanged = config.stash[UNCHANGED_KEY] = Unchanged()
-    config.pluginmanager.register(LaserSession(options, unchanged), "lasertest-session")
+    config.pluginmanager.register(session, "lasertest-session")
     if config.pluginmanager.hasplugin("xdist"):
-        config.pluginmanager.register(XdistHooks(SEED_KEY, unchanged), "lasertest-xdist")
+        config.pluginmanager.register(XdistHooks(session), "lasertest-xdist")
+
+
+def pytest_collect_file(file_path: Path, parent: pytest.Collector) -> pytest.File | None:
+    """A pairs file, collected by `collect.PairFile`; any other file is not ours."""
+    if not LaserSession.of(parent.config).collects(file_path):
+        return None
+    from pytest_lasertest.plugin.collect import PairFile
+
+    pair_file: PairFile = PairFile.from_parent(parent, path=file_path)
+    return pair_file
 
 
 def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions:
@@ -126,7 +132,7 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
     if seed is None:
         # xdist workers take the controller's seed so that they all agree.
         workerinput = getattr(config, "workerinput", {})
-        seed = workerinput[SEED_KEY] if SEED_KEY in workerinput else fresh_seed()
+        seed = workerinput[SEED_INPUT] if SEED_INPUT in workerinput else fresh_seed()
     profile = config.getoption("laser_profile")
     artifacts = config.getoption("laser_artifacts")
     examples = config.getoption("laser_examples")

@@ -6,37 +6,14 @@ import secrets
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Literal, get_args
 
 import pytest
 
-Profile = Literal["dev", "ci", "nightly", "triage"]
-Policy = Literal["candidate", "regression"]
-PROFILES: tuple[Profile, ...] = get_args(Profile)
-POLICIES: tuple[Policy, ...] = get_args(Policy)
+from pytest_lasertest.model.policy import POLICIES, Policy
+from pytest_lasertest.search.budgets import BUDGET_NAMES, BUDGETS, MAX_EXAMPLES, Budget, BudgetName
+
 MAX_SEED = 2**32 - 1
 PAIRS_SUFFIXES = (".lasertest.yaml", ".lasertest.yml")
-
-
-@dataclass(frozen=True)
-class Budget:
-    """How hard each placement item searches around its witness."""
-
-    examples: int  # perturbations tried, the witness itself among them
-    shrink_simulations: int  # simulations spent making a failure smaller
-    explain: bool  # run Hypothesis's explain phase on a failure
-
-
-# dev keeps a local run short; ci runs the README's `pytest examples/` with `-n 2` on 2 cores in
-# about a minute, a third of the 3 minutes a pull request may take; triage replays a stored
-# failure and spends its budget on shrinking and explaining it.
-BUDGETS: dict[Profile, Budget] = {
-    "dev": Budget(examples=10, shrink_simulations=24, explain=False),
-    "ci": Budget(examples=16, shrink_simulations=24, explain=False),
-    "nightly": Budget(examples=100, shrink_simulations=200, explain=True),
-    "triage": Budget(examples=4, shrink_simulations=400, explain=True),
-}
-MAX_EXAMPLES = 10_000
 
 
 @dataclass(frozen=True)
@@ -44,7 +21,7 @@ class LaserOptions:
     """The run's settings: everything needed to replay it."""
 
     seed: int
-    profile: Profile
+    profile: BudgetName  # --laser-profile
     policy: Policy
     artifacts: Path | None
     pairs: tuple[Path, ...]  # pairs files named on the command line, absolute
@@ -53,10 +30,7 @@ class LaserOptions:
     @property
     def budget(self) -> Budget:
         """The profile's budget, with `--laser-examples` if given."""
-        budget = BUDGETS[self.profile]
-        if self.examples is None:
-            return budget
-        return Budget(self.examples, budget.shrink_simulations, budget.explain)
+        return BUDGETS[self.profile].with_examples(self.examples)
 
     def recorded(self) -> dict[str, object]:
         """The run's seed, profile and policy, as the artifacts record them."""
@@ -69,9 +43,6 @@ class LaserOptions:
             f"--laser-seed={self.seed} --laser-profile={self.profile} --laser-policy={self.policy}"
             f"{examples}"
         )
-
-
-OPTIONS_KEY = pytest.StashKey[LaserOptions]()
 
 
 def parse_seed(text: str) -> int | None:
@@ -95,11 +66,12 @@ def fresh_seed() -> int:
     return secrets.randbelow(MAX_SEED + 1)
 
 
-def parse_profile(text: str) -> Profile:
+def parse_profile(text: str) -> BudgetName:
     """A budget profile name."""
-    if text not in PROFILES:
+    if text not in BUDGET_NAMES:
         raise pytest.UsageError(
-            f"--laser-profile={text!r} is not a budget profile: choose one of {', '.join(PROFILES)}"
+            f"--laser-profile={text!r} is not a budget profile: choose one of "
+            f"{', '.join(BUDGET_NAMES)}"
         )
     return text
 
@@ -118,7 +90,7 @@ def parse_examples(text: str) -> int:
     return examples
 
 
-def default_profile(environ: Mapping[str, str]) -> Profile:
+def default_profile(environ: Mapping[str, str]) -> BudgetName:
     """`ci` on a CI service (which sets CI), else `dev`."""
     return "ci" if environ.get("CI", "").lower() not in ("", "0", "false", "no") else "dev"
 

@@ -1,44 +1,110 @@
-"""The plugin object of one run: the report header, pairs-file collection, and xdist seeding."""
+"""The one object that owns a run's state, and the hooks that use it.
+
+`LaserSession` holds the run's options and everything the run keeps between items: the plans of
+its pairs, their obstacle-free drives, the runs already simulated, the physics client they are
+simulated in, the pairs that needed no items, and the summary of what the placement items found.
+The entry point registers it as a plugin and keeps it in the config's stash, where items find it
+(`LaserSession.of`). Nothing heavy is imported here: the solver, the simulator and numpy load
+when an item first needs them.
+"""
 
 from __future__ import annotations
 
 from collections.abc import Generator
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pytest
 
-from pytest_lasertest.plugin.options import OPTIONS_KEY, LaserOptions, is_pairs_file
+from pytest_lasertest.plugin.options import LaserOptions, is_pairs_file
 from pytest_lasertest.reports.summary import Summary, Unchanged
 
-# Where collection notes the pairs whose scanners read alike.
-UNCHANGED_KEY = pytest.StashKey[Unchanged]()
-# The pytest-xdist `workeroutput` entry that carries them from a worker to the controller.
+if TYPE_CHECKING:
+    from pytest_lasertest.model.plan import PairPlan
+    from pytest_lasertest.pairsfile import Pair, PairsFile
+    from pytest_lasertest.pairsfile.controller import ControllerChoice
+    from pytest_lasertest.search.drives import PairDrive, RunCache
+    from pytest_lasertest.sim.client import PhysicsClient
+
+# The pytest-xdist `workerinput` entry that hands the controller's seed to each worker.
+SEED_INPUT = "lasertest_seed"
+# The pytest-xdist `workeroutput` entry that carries a worker's unchanged pairs to the controller.
 UNCHANGED_OUTPUT = "lasertest_unchanged"
 
 
 class LaserSession:
-    """Collects pairs files, keeps a broken one from stopping the rest of the run, sums up what
-    the placement items found, and names the pairs that needed no items."""
+    """The run's options and state: collects pairs files, keeps a broken one from stopping the
+    rest of the run, plans and drives each pair once, sums up what the placement items found,
+    and names the pairs that needed no items."""
 
-    def __init__(self, options: LaserOptions, unchanged: Unchanged) -> None:
+    key = pytest.StashKey["LaserSession"]()
+
+    def __init__(self, options: LaserOptions) -> None:
         self.options = options
         self.named_files = frozenset(options.pairs)
         self.broken_files = 0
         self.summary = Summary()
-        self.unchanged = unchanged
+        self.unchanged = Unchanged()
+        # Keyed by (pairs file path, pair name): every item of a pairs file drives with the
+        # same controller, so the file and the pair name a plan and a control drive.
+        self._plans: dict[tuple[Path, str], PairPlan] = {}
+        self._controls: dict[tuple[Path, str], PairDrive] = {}
+        self._client: PhysicsClient | None = None
+        self._cache: RunCache | None = None
+
+    @classmethod
+    def of(cls, config: pytest.Config) -> LaserSession:
+        """The session of the run `config` configures."""
+        return config.stash[cls.key]
+
+    def collects(self, path: Path) -> bool:
+        """Whether pytest should collect `path` (any file it visits) as a pairs file."""
+        return is_pairs_file(path, self.named_files)
+
+    def physics_client(self) -> PhysicsClient:
+        """The process's physics client, which every drive resets and builds its world in (see
+        `PhysicsClient` for what a client of its own would cost each run)."""
+        if self._client is None:
+            from pytest_lasertest.sim.client import PhysicsClient
+
+            self._client = PhysicsClient()
+        return self._client
+
+    def run_cache(self) -> RunCache:
+        """The process's runs, by scenario: no scenario is simulated twice in a session."""
+        if self._cache is None:
+            from pytest_lasertest.search.drives import RunCache
+
+            self._cache = RunCache()
+        return self._cache
+
+    def control_drive(self, spec: PairsFile, pair: Pair, controller: ControllerChoice) -> PairDrive:
+        """The pair's obstacle-free runs, driven once per process; they are deterministic, so
+        pytest-xdist workers that drive the same pair get the same runs."""
+        key = (spec.path, pair.name)
+        if key not in self._controls:
+            from pytest_lasertest.search.drives import drive_pair
+
+            client, cache = self.physics_client(), self.run_cache()
+            self._controls[key] = drive_pair(
+                spec, pair, (), self.options.seed, controller, client, cache
+            )
+        return self._controls[key]
+
+    def plan(self, spec: PairsFile, pair: Pair, controller: ControllerChoice) -> PairPlan:
+        """The pair's witnesses, planned once per process along the path its baseline drove;
+        planning is deterministic, so workers that plan the same pair find the same."""
+        key = (spec.path, pair.name)
+        if key not in self._plans:
+            from pytest_lasertest.search.plans import plan_for
+
+            control = self.control_drive(spec, pair, controller)
+            self._plans[key] = plan_for(spec, pair, control.baseline)
+        return self._plans[key]
 
     def pytest_report_header(self, config: pytest.Config) -> str:
         artifacts = f", artifacts in {self.options.artifacts}" if self.options.artifacts else ""
         return f"lasertest: {self.options.replay_options()}{artifacts}"
-
-    def pytest_collect_file(self, file_path: Path, parent: pytest.Collector) -> pytest.File | None:
-        if not is_pairs_file(file_path, self.named_files):
-            return None
-        from pytest_lasertest.plugin.collect import PairFile
-
-        pair_file: PairFile = PairFile.from_parent(parent, path=file_path)
-        return pair_file
 
     @pytest.hookimpl(wrapper=True)
     def pytest_make_collect_report(
@@ -84,18 +150,22 @@ class LaserSession:
                 for line in lines:
                     terminalreporter.write_line(line)
 
+    def pytest_unconfigure(self, config: pytest.Config) -> None:
+        if self._client is not None:
+            self._client.close()
+
 
 class XdistHooks:
     """Hooks registered only when pytest-xdist is active."""
 
-    def __init__(self, seed_key: str, unchanged: Unchanged) -> None:
-        self.seed_key = seed_key
-        self.unchanged = unchanged
+    def __init__(self, session: LaserSession) -> None:
+        self.session = session
 
     def pytest_configure_node(self, node: Any) -> None:
         """Hand the controller's seed to each worker."""
-        node.workerinput[self.seed_key] = node.config.stash[OPTIONS_KEY].seed
+        node.workerinput[SEED_INPUT] = self.session.options.seed
 
     def pytest_testnodedown(self, node: Any, error: object) -> None:
         """Take the pairs a worker collected to no items: the controller collects nothing."""
-        self.unchanged.merge(getattr(node, "workeroutput", {}).get(UNCHANGED_OUTPUT, {}))
+        output = getattr(node, "workeroutput", {}).get(UNCHANGED_OUTPUT, {})
+        self.session.unchanged.merge(output)

@@ -1,1 +1,2 @@
-"""Every text and JSON a person reads: failures, drives, plans, explanations, profiles, the summary."""
+"""Every text and JSON a person reads: failures, drives, coverage, plans, explanations,
+profiles, the catalogue and the run's summary."""

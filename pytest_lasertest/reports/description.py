@@ -8,47 +8,10 @@ The JSON holds the PROFILE fields of `lasertest plan --json` and where they came
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
-from dataclasses import dataclass
-from pathlib import Path
 
-from pytest_lasertest.reports.plan import profile_json
-from pytest_lasertest.model.sensor import LaserProfile
-from pytest_lasertest.pairsfile.described import laser_profile
-from pytest_lasertest.descriptions.lasers import DescriptionFile, Laser, choose_laser, read_lasers
-from pytest_lasertest.inputs.errors import Location, display_path
-from pytest_lasertest.inputs.node import SpecNode
-from pytest_lasertest.descriptions.readers import AtRevision, reader_at
-
-
-@dataclass(frozen=True)
-class ReadProfile:
-    """A laser read from a description, and what it was read from."""
-
-    laser: Laser
-    profile: LaserProfile
-    base_frame: str  # the frame the mount is given in
-    file: Path
-    ref: str | None
-    commit: str | None
-
-
-def read_profile(
-    path: Path,
-    *,
-    sensor: str | None,
-    ref: str | None,
-    args: Mapping[str, str],
-    packages: Mapping[str, Path],
-) -> ReadProfile:
-    """The laser of a description as the gate reads it (SpecError, GitError when it cannot)."""
-    path = path.absolute()
-    reader = reader_at(ref, path.parent)
-    lasers = read_lasers(DescriptionFile(path, reader, args, packages))
-    where = SpecNode(sensor, Location(path, 1), "--sensor")
-    laser = choose_laser(lasers, sensor, where, reader.name(path))
-    commit = reader.revision.commit if isinstance(reader, AtRevision) else None
-    return ReadProfile(laser, laser_profile(laser, {}), laser.mount().base, path, ref, commit)
+from pytest_lasertest.descriptions.profile import ReadProfile
+from pytest_lasertest.inputs.errors import display_path
+from pytest_lasertest.reports.formats import profile_json
 
 
 def profile_read_json(read: ReadProfile) -> dict[str, object]:

@@ -14,18 +14,17 @@ from typing import Literal
 
 import numpy as np
 
+from pytest_lasertest.model.plan import Witness
 from pytest_lasertest.model.route import scan_times
 from pytest_lasertest.model.verify import (
     EXACT_WITHIN,
     ROLES,
-    PairPlan,
     Scanner,
     Scene,
-    Witness,
     miss_margins,
     readings,
 )
-from pytest_lasertest.reports.plan import describe_obstacle, obstacle_json
+from pytest_lasertest.reports.formats import obstacle_json, pose_text
 
 Role = Literal["detector", "misser"]
 
@@ -52,17 +51,6 @@ class ScanExplanation:
     misses: int  # beams that read +inf
     clearance: float | None  # m, the misser's nearest beam from the obstacle; None for the detector
     below_plane: float  # m, how far the obstacle's top is below the scan plane; <= 0: it crosses it
-
-
-def witness_ids(plan: PairPlan) -> list[str]:
-    """Every witness id of a pair, in the order `lasertest plan` prints them."""
-    return [witness.id for direction in plan.directions for witness in direction.witnesses]
-
-
-def find_witness(plan: PairPlan, witness_id: str) -> Witness | None:
-    """The witness with this id, or None."""
-    witnesses = (witness for direction in plan.directions for witness in direction.witnesses)
-    return next((witness for witness in witnesses if witness.id == witness_id), None)
 
 
 def explain_scans(scene: Scene, witness: Witness) -> tuple[ScanExplanation, ...]:
@@ -133,7 +121,7 @@ def explain_text(pair: str, witness: Witness, scans: tuple[ScanExplanation, ...]
     """A heading, then a few lines per scan for people."""
     placement = witness.placement
     lines = [
-        f"{pair} {witness.id}: {describe_obstacle(placement.obstacle)}",
+        f"{pair} {witness.id}: {placement.obstacle.describe()}",
         f"  anchor t = {placement.anchor:.2f} s, until t = {placement.until:.2f} s",
     ]
     for index, scan in enumerate(scans):
@@ -144,7 +132,6 @@ def explain_text(pair: str, witness: Witness, scans: tuple[ScanExplanation, ...]
 
 def _scan_heading(scan: ScanExplanation, *, later: bool) -> str:
     """`candidate (misser), last scan up to until, t = 3.78 s, pose (...): still misses it`."""
-    x, y, yaw = scan.pose
     when = "last scan up to until" if later else "at the anchor"
     if scan.role == "detector":
         verdict = "reads it" if scan.hits else "DOES NOT READ IT"
@@ -152,7 +139,7 @@ def _scan_heading(scan: ScanExplanation, *, later: bool) -> str:
         verdict = "READS IT" if scan.hits else "still misses it" if later else "misses it"
     return (
         f"  {scan.scanner} ({scan.role}) {when}, t = {scan.time:.2f} s, "
-        f"pose ({x:.2f}, {y:.2f}, {yaw:.2f}): {verdict}"
+        f"pose {pose_text(*scan.pose)}: {verdict}"
     )
 
 

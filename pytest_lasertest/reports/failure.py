@@ -1,34 +1,57 @@
-"""What a failing placement item tells its reader, and what every placement item records.
+"""What a placement item tells its reader when it fails, and what every placement item records.
 
-The report names the oracle that fired and its margin, the minimal failing placement and its
-change from the witness, which beams of each scanner read the obstacle, whether the baseline
-fails there too, the search's figures, the seed and how to replay the case. The same numbers go
-on `item.user_properties` as plain values, so they reach JUnit XML and cross to the pytest-xdist
+A failure report names the oracle that fired and its margin, the minimal failing placement and
+its change from the witness, which beams of each scanner read the obstacle, whether the baseline
+fails there too, the search's figures, the seed and how to replay the case. A witness the exact
+ray cast rejects is reported as the bug in the solver it is. The same numbers go on
+`item.user_properties` as plain values, so they reach JUnit XML and cross to the pytest-xdist
 controller, where the run's summary is made from them.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
-from pytest_lasertest.search.drives import run_properties
-from pytest_lasertest.model.geometry import Obstacle
-from pytest_lasertest.search.offsets import AXES, OffsetBox
-from pytest_lasertest.model.verify import ROLES, Scene, Verification, hit_margins
-from pytest_lasertest.reports.plan import describe_obstacle
+from pytest_lasertest.inputs.errors import display_path
+from pytest_lasertest.model.obstacles import Obstacle
+from pytest_lasertest.model.plan import Witness
 from pytest_lasertest.model.sensor import LaserProfile
-from pytest_lasertest.pairsfile import Pair
+from pytest_lasertest.model.verify import (
+    DETECTED_BY,
+    REQUIRED_MARGIN,
+    ROLES,
+    Scene,
+    Verification,
+    hit_margins,
+)
+from pytest_lasertest.pairsfile import Pair, PairsFile
+from pytest_lasertest.pairsfile.controller import ControllerChoice
+from pytest_lasertest.reports.drive import MEANINGS, controller_line, run_properties
+from pytest_lasertest.reports.formats import Replay, pose_text, run_line
+from pytest_lasertest.search.offsets import AXES, OffsetBox
 from pytest_lasertest.search.trials import TrialResult, Trials
 
-# What each class of failure means for the change.
-MEANINGS = {
-    "regression": "a regression: the baseline passes where the candidate fails",
-    "pre-existing": "pre-existing: the baseline fails here too",
-    "improvement": "an improvement: the candidate passes where the baseline fails",
-    "unchanged": "unchanged: both pass",
-}
+REPRO_SUFFIX = ".lasertest.yaml"
+
+
+@dataclass(frozen=True)
+class PlacementFailure:
+    """A placement item's minimal failure, and the search that found it."""
+
+    nodeid: str  # the item's
+    spec: PairsFile
+    pair: Pair
+    controller: ControllerChoice
+    witness: Witness
+    result: TrialResult  # the minimal failing trial
+    trials: Trials
+    box: OffsetBox
+    notes: tuple[str, ...]  # Hypothesis's own: the falsifying example, what explain found
+    seed: int  # of the run, and of its scan noise
+    run_options: dict[str, object]  # the run's seed, profile and policy, as artifacts record
 
 
 @dataclass(frozen=True)
@@ -48,6 +71,71 @@ class BeamReading:
         return f"beam{plural} {beams} read it, {self.depth * 1000:.0f} mm deep"
 
 
+def failure_report(failure: PlacementFailure, replay: Replay, artifacts: tuple[Path, ...]) -> str:
+    """The report of a placement item's minimal failure."""
+    pair, result, trials = failure.pair, failure.result, failure.trials
+    lines = [
+        f"the candidate fails ({' and '.join(result.oracles())}) near witness "
+        f"{failure.witness.id}: {MEANINGS[result.classification]}",
+        f"  pair       {pair.name} ({pair.location})",
+        controller_line(failure.controller),
+        *oracle_lines(result),
+        f"  witness    {failure.witness.placement.obstacle.describe()}",
+        f"  minimal    {result.placement.obstacle.describe()}",
+        f"  change     {result.offset.describe()} (the smallest the search found that fails)",
+        f"  margins    {margins_text(result.verification)}",
+        *beam_lines(trials.scene, result),
+        run_line("baseline", pair.baseline.label, result.baseline),
+        run_line("candidate", pair.candidate.label, result.candidate),
+        search_line(trials, failure.box),
+        *(f"  hypothesis {note}" for note in failure.notes),
+        f"  policy     {trials.policy}",
+        f"  seed       {failure.seed}",
+        *_replay_lines(replay, artifacts),
+    ]
+    return "\n".join(lines)
+
+
+def _replay_lines(replay: Replay, artifacts: tuple[Path, ...]) -> list[str]:
+    """How to run the case again: the item, and the pinned repro if one was written."""
+    stored = "(replays this case first, from .hypothesis/)"
+    repro = [path for path in artifacts if path.name.endswith(REPRO_SUFFIX)]
+    if not repro:
+        return [f"{replay.line()}  {stored}"]
+    return [
+        f"  replay     pytest '{display_path(repro[0])}'  (this case alone, pinned)",
+        f"  rerun      {replay.command()}  {stored}",
+        *(f"  artifact   {display_path(path)}" for path in artifacts),
+    ]
+
+
+def rejection_report(
+    pair: Pair, witness: Witness, verification: Verification, replay: Replay, artifact: Path | None
+) -> str:
+    """The report of a witness the exact ray cast rejects: a bug in the solver."""
+    placement = witness.placement
+    lines = [
+        f"the exact ray cast rejects witness {witness.id}, which the solver returned as "
+        "verified: this is a bug in pytest-lasertest's solver, please report it with this "
+        "pairs file",
+        f"  pair       {pair.name} ({pair.location})",
+        f"  baseline   {pair.baseline.label}: {pair.baseline.profile.describe()}",
+        f"  candidate  {pair.candidate.label}: {pair.candidate.profile.describe()}",
+        f"  obstacle   {placement.obstacle.describe()}",
+        f"  read by    the {DETECTED_BY[placement.direction]} at t = "
+        f"{placement.anchor:.2f} s, robot at {pose_text(*witness.pose)}",
+        f"  margins    {margins_text(verification)}; each must reach "
+        f"{REQUIRED_MARGIN * 1000:.1f} mm",
+    ]
+    if verification.seen_by_misser_at:
+        times = ", ".join(f"{time:.2f}" for time in verification.seen_by_misser_at)
+        lines.append(f"  misser     reads it at t = {times} s")
+    lines.append(replay.line())
+    if artifact is not None:
+        lines.append(f"  evidence   {display_path(artifact)}")
+    return "\n".join(lines)
+
+
 def beam_reading(profile: LaserProfile, pose: np.ndarray, obstacle: Obstacle) -> BeamReading:
     """The beams of the scan `profile` takes at `pose` [x, y, yaw] that read `obstacle`."""
     margins = hit_margins(profile, pose.reshape(1, 3), obstacle)[0]
@@ -60,17 +148,12 @@ def beam_lines(scene: Scene, result: TrialResult) -> list[str]:
     """Each scanner's reading of the minimal placement, at the instant the detector must see it."""
     placement = result.placement
     pose = scene.path.poses_at(np.array([placement.anchor]))[0]
-    lines = [f"  beams      at t = {placement.anchor:.2f} s, robot at {_pose(pose)}:"]
+    lines = [f"  beams      at t = {placement.anchor:.2f} s, robot at {pose_text(*pose.tolist())}:"]
     for side in ROLES[placement.direction]:
         profile = getattr(scene, side)
         reading = beam_reading(profile, pose, placement.obstacle)
         lines.append(f"    {side:<9} {reading.describe()}")
     return lines
-
-
-def margin_line(verification: Verification) -> str:
-    """The minimal placement's ray-cast margins."""
-    return f"  margins    {margins_text(verification)}"
 
 
 def margins_text(verification: Verification) -> str:
@@ -108,6 +191,17 @@ def search_line(trials: Trials, box: OffsetBox) -> str:
     )
 
 
+def witness_properties(witness: Witness, verification: Verification) -> list[tuple[str, object]]:
+    """The witness an item searches around, and its ray-cast margins."""
+    return [
+        ("lasertest.obstacle", witness.placement.obstacle.describe()),
+        ("lasertest.margin", verification.margin),
+        ("lasertest.lead", verification.lead),
+        ("lasertest.late", verification.late),
+        ("lasertest.detected_by", DETECTED_BY[witness.placement.direction]),
+    ]
+
+
 def search_properties(box: OffsetBox, trials: Trials) -> list[tuple[str, object]]:
     """The search's figures, for JUnit XML and the run's summary."""
     witness = trials.witness_result
@@ -139,7 +233,7 @@ def failure_properties(result: TrialResult) -> list[tuple[str, object]]:
         ("lasertest.failed_oracles", ",".join(result.oracles())),
         ("lasertest.classification", result.classification),
         ("lasertest.offset", result.offset.describe()),
-        ("lasertest.minimal_obstacle", describe_obstacle(result.placement.obstacle)),
+        ("lasertest.minimal_obstacle", result.placement.obstacle.describe()),
     ]
 
 
@@ -151,21 +245,3 @@ def _reach(box: OffsetBox) -> str:
         if low or high:
             parts.append(f"{name} {low:+.3f}..{high:+.3f} {units.get(name, 'm')}")
     return ", ".join(parts) or "none (the witness alone)"
-
-
-def _pose(pose: np.ndarray) -> str:
-    x, y, yaw = pose.tolist()
-    return f"({x:.2f}, {y:.2f}, {yaw:.2f})"
-
-
-def trial_lines(result: TrialResult, pair: Pair) -> list[str]:
-    """What each robot did at the minimal placement."""
-    lines = []
-    for side, run in (("baseline", result.baseline), ("candidate", result.candidate)):
-        label = getattr(pair, side).label
-        if run is None:
-            lines.append(f"  {side:<10} {label}: not driven (the candidate passed)")
-            continue
-        outcome = "; ".join(verdict.describe() for _, verdict in run.verdicts.named())
-        lines.append(f"  {side:<10} {label}: {'passed' if run.passed else 'FAILED'}: {outcome}")
-    return lines

@@ -1,1 +1,2 @@
-"""What the gate does with a pair, without pytest: drives, trials, offsets, the Hypothesis search, budgets."""
+"""What the gate does with a pair, without pytest: plans, drives, trials, offsets, the
+Hypothesis search and its budgets."""

@@ -11,15 +11,14 @@ from __future__ import annotations
 from collections import OrderedDict
 from dataclasses import dataclass
 
-from pytest_lasertest.model.geometry import Obstacle
-from pytest_lasertest.nav.protocol import ControllerFactory
-from pytest_lasertest.plugin.options import Policy
-from pytest_lasertest.model.route import NominalPath, nominal_path, timed_to
+from pytest_lasertest.model.obstacles import Obstacle
+from pytest_lasertest.model.policy import Policy, fails
 from pytest_lasertest.model.sensor import LaserProfile
-from pytest_lasertest.sim.client import PhysicsClient
-from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
+from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
+from pytest_lasertest.sim.client import PhysicsClient
+from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
 
 
 @dataclass(frozen=True, eq=False)
@@ -30,28 +29,8 @@ class PairDrive:
     candidate: Run
 
     def fails(self, policy: Policy) -> bool:
-        """Whether the policy fails this: any failure of the candidate, or under `regression`
-        only one the baseline does not share."""
-        if policy == "regression":
-            return self.baseline.passed and not self.candidate.passed
-        return not self.candidate.passed
-
-    def properties(self) -> list[tuple[str, object]]:
-        """Each oracle's margin and outcome for both robots, for JUnit XML and pytest-xdist."""
-        return run_properties("baseline", self.baseline) + run_properties(
-            "candidate", self.candidate
-        )
-
-
-def run_properties(side: str, run: Run) -> list[tuple[str, object]]:
-    """Each oracle's outcome and margin in one robot's run, and its trajectory's digest."""
-    rows: list[tuple[str, object]] = []
-    for oracle, verdict in run.verdicts.named():
-        rows.append((f"lasertest.{side}.{oracle}", "pass" if verdict.passed else "fail"))
-        margin = round(float(verdict.margin), 4)  # m; a plain float crosses to xdist
-        rows.append((f"lasertest.{side}.{oracle}_margin", margin))
-    rows.append((f"lasertest.{side}.trajectory", run.digest()[:16]))
-    return rows
+        """Whether the policy fails these runs (see `policy.fails`)."""
+        return fails(policy, self.baseline.passed, self.candidate.passed)
 
 
 class RunCache:
@@ -118,26 +97,6 @@ def scenario(
     return Scenario(
         spec.robot, profile, obstacles, world.start, world.route, world.time_limit, seed
     )
-
-
-def solver_path(spec: PairsFile, control: Run) -> NominalPath:
-    """The nominal path the solver plans on: the route's legs and turns, timed as `control`,
-    the baseline's obstacle-free run, drove them."""
-    world, robot = spec.world, spec.robot
-    path = nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
-    return timed_to(path, control.times, control.poses)
-
-
-def drive_lines(drives: PairDrive, pair: Pair) -> list[str]:
-    """Report lines: each robot's scanner and what its run did."""
-    lines = []
-    for side, run in (("baseline", drives.baseline), ("candidate", drives.candidate)):
-        scanner = getattr(pair, side)
-        outcome = "; ".join(verdict.describe() for _, verdict in run.verdicts.named())
-        lines.append(
-            f"  {side:<10} {scanner.label}: {'passed' if run.passed else 'FAILED'}: {outcome}"
-        )
-    return lines
 
 
 def drive(

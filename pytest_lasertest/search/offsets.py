@@ -18,7 +18,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import Box, Obstacle
 from pytest_lasertest.model.verify import REQUIRED_MARGIN, Placement, Scene, verify
 
 AXES = ("x", "y", "yaw", "size", "height")
@@ -84,29 +83,15 @@ class OffsetBox:
 
 def perturbed(placement: Placement, offset: Offset) -> Placement:
     """The placement with its obstacle moved, turned, resized and raised by `offset`."""
-    obstacle = placement.obstacle
-    moved = {"x": obstacle.x + offset.x, "y": obstacle.y + offset.y}
-    height = obstacle.height + offset.height
-    if isinstance(obstacle, Box):
-        changed: Obstacle = dataclasses.replace(
-            obstacle,
-            **moved,
-            yaw=obstacle.yaw + offset.yaw,
-            length=obstacle.length + offset.size,
-            width=obstacle.width + offset.size,
-            height=height,
-        )
-    else:
-        radius = obstacle.radius + offset.size / 2.0
-        changed = dataclasses.replace(obstacle, **moved, radius=radius, height=height)
-    return dataclasses.replace(placement, obstacle=changed)
+    obstacle = placement.obstacle.perturbed(**dataclasses.asdict(offset))
+    return dataclasses.replace(placement, obstacle=obstacle)
 
 
 def discriminates(scene: Scene, placement: Placement, sizes: tuple[float, float]) -> bool:
     """Whether the placement verifies and its obstacle's size stays within `sizes` (m): the
     smallest obstacle the robot must see, and the largest the pairs file places."""
     smallest, largest = sizes
-    thinnest, widest = _sides(placement.obstacle)
+    thinnest, widest = placement.obstacle.sides
     if thinnest < smallest or widest > largest or placement.obstacle.height <= 0.0:
         return False
     return verify(scene, placement).holds(REQUIRED_MARGIN)
@@ -122,7 +107,7 @@ def offset_box(
 
     if not holds(Offset()):
         return OffsetBox(Offset(), Offset())
-    turns = isinstance(placement.obstacle, Box)
+    turns = placement.obstacle.has_yaw
     low, high = {}, {}
     for name in AXES:
         reach = REACH[name] if turns or name != "yaw" else 0.0
@@ -177,10 +162,3 @@ def _at(box: OffsetBox, fractions: np.ndarray) -> Offset:
 
 def _scaled(offset: Offset, factor: float) -> Offset:
     return Offset(**{name: offset.axis(name) * factor for name in AXES})
-
-
-def _sides(obstacle: Obstacle) -> tuple[float, float]:
-    """The obstacle's shorter and longer side, or its diameter twice (m)."""
-    if isinstance(obstacle, Box):
-        return min(obstacle.length, obstacle.width), max(obstacle.length, obstacle.width)
-    return 2.0 * obstacle.radius, 2.0 * obstacle.radius

@@ -25,8 +25,8 @@ from hypothesis import strategies as st
 from hypothesis.database import DirectoryBasedExampleDatabase, ExampleDatabase
 from hypothesis.statistics import collector, describe_statistics
 
+from pytest_lasertest.search.budgets import Budget
 from pytest_lasertest.search.offsets import AXES, Offset, OffsetBox, Untested
-from pytest_lasertest.plugin.options import Budget
 
 Trial = Callable[[Offset], str]
 

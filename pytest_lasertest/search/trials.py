@@ -11,28 +11,19 @@ failure, new simulations are counted against the shrink budget.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Literal
 
-from pytest_lasertest.search.drives import RunCache, scenario
-from pytest_lasertest.search.offsets import Offset, Untested, discriminates, perturbed
-from pytest_lasertest.plugin.options import Policy
-from pytest_lasertest.model.verify import Placement, Scene, Verification, verify
+from pytest_lasertest.model.policy import Classification, Policy, classify, fails
 from pytest_lasertest.model.sensor import LaserProfile
-from pytest_lasertest.sim.client import PhysicsClient
-from pytest_lasertest.sim.scenario import Run
+from pytest_lasertest.model.verify import Placement, Scene, Verification, verify
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
+from pytest_lasertest.search.drives import RunCache, scenario
+from pytest_lasertest.search.offsets import Offset, Untested, discriminates, perturbed
+from pytest_lasertest.sim.client import PhysicsClient
+from pytest_lasertest.sim.scenario import Run
 
-Classification = Literal["regression", "pre-existing", "improvement", "unchanged"]
 NOT_DISCRIMINATING = "rejected: no longer discriminating"
 BUDGET_SPENT = "not simulated: the shrink budget is spent"
-
-
-def classify(baseline_passed: bool, candidate_passed: bool) -> Classification:
-    """What the change did here: broke it, found it broken, fixed it, or left it as it was."""
-    if baseline_passed != candidate_passed:
-        return "regression" if baseline_passed else "improvement"
-    return "unchanged" if baseline_passed else "pre-existing"
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,15 +37,17 @@ class TrialResult:
     baseline: Run | None  # driven only when the candidate failed
 
     @property
+    def baseline_passed(self) -> bool:
+        """Whether the baseline passed here; not driven, it is taken to pass."""
+        return self.baseline.passed if self.baseline is not None else True
+
+    @property
     def classification(self) -> Classification:
-        baseline_passed = self.baseline.passed if self.baseline is not None else True
-        return classify(baseline_passed, self.candidate.passed)
+        return classify(self.baseline_passed, self.candidate.passed)
 
     def fails(self, policy: Policy) -> bool:
-        """Whether the policy fails the item on this trial."""
-        if policy == "regression":
-            return self.classification == "regression"
-        return not self.candidate.passed
+        """Whether the policy fails the item on this trial (see `policy.fails`)."""
+        return fails(policy, self.baseline_passed, self.candidate.passed)
 
     def oracles(self) -> list[str]:
         """The candidate's failing oracles, by name."""

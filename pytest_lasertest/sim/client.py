@@ -15,7 +15,8 @@ from types import ModuleType
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import Box, FloatArray, Obstacle, Pose2D, bounding_radius
+from pytest_lasertest.model.geometry import FloatArray, Pose2D
+from pytest_lasertest.model.obstacles import Box, Obstacle
 
 # PyBullet's table of physics clients: ids run from 0 to this, and are reused once disconnected.
 MAX_CLIENTS = 1024
@@ -106,7 +107,7 @@ class PhysicsWorld:
             self._setup(time_step)
             self.robot = self._load_husky(start)
             self.obstacles = tuple(self._add_obstacle(obstacle) for obstacle in obstacles)
-            self._circles = [(o.x, o.y, bounding_radius(o)) for o in obstacles]
+            self._circles = [(o.x, o.y, o.bounding_radius) for o in obstacles]
             self._reach = self._robot_reach(start)
             inertial = self._pybullet.getDynamicsInfo(self.robot, -1, physicsClientId=self._client)
             self._from_com = self._pybullet.invertTransform(*inertial[3:5])
@@ -267,12 +268,11 @@ class PhysicsWorld:
                 height=obstacle.height,
                 physicsClientId=self._client,
             )
-        yaw = obstacle.yaw if isinstance(obstacle, Box) else 0.0
         body: int = pybullet.createMultiBody(
             baseMass=0.0,
             baseCollisionShapeIndex=shape,
             basePosition=(obstacle.x, obstacle.y, obstacle.height / 2.0),
-            baseOrientation=pybullet.getQuaternionFromEuler((0.0, 0.0, yaw)),
+            baseOrientation=pybullet.getQuaternionFromEuler((0.0, 0.0, obstacle.yaw)),
             physicsClientId=self._client,
         )
         self._join(body, WORLD_GROUP)

@@ -15,15 +15,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import (
-    Box,
-    Cylinder,
-    FloatArray,
-    IntArray,
-    Obstacle,
-    bounding_radius,
-)
-from pytest_lasertest.model.sensor import FULL_TURN, LaserProfile
+from pytest_lasertest.model.geometry import FULL_TURN, FloatArray, IntArray, wrap_angle
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
+from pytest_lasertest.model.sensor import LaserProfile
 
 # The distance (m) every beam reads from inside an obstacle.
 _INSIDE = np.zeros(1)
@@ -61,7 +55,7 @@ class FlatLidar:
     def __init__(self, profile: LaserProfile, obstacles: tuple[Obstacle, ...]) -> None:
         self.profile = profile
         self.obstacles = tuple(o for o in obstacles if o.height > profile.scan_height)
-        self._reach = [bounding_radius(obstacle) for obstacle in self.obstacles]
+        self._reach = [obstacle.bounding_radius for obstacle in self.obstacles]
         self._faces = [_faces(o) if isinstance(o, Box) else () for o in self.obstacles]
         self._count = profile.beam_count
         self._mount = profile.pose.xyz[:2]
@@ -151,7 +145,7 @@ class FlatLidar:
 
     def _window(self, low: float, width: float) -> slice:
         """The beams (on the ring) whose angles in the base frame lie in [low, low + width]."""
-        low = (low + math.pi) % FULL_TURN - math.pi
+        low = wrap_angle(low)
         first = bisect.bisect_left(self._bisectable, low)
         last = bisect.bisect_right(self._bisectable, low + width)
         return slice(first, min(last, first + self._count))
@@ -184,17 +178,7 @@ class _Face(NamedTuple):
 
 def _faces(box: Box) -> tuple[_Face, ...]:
     """The four faces of the box's footprint."""
-    cos, sin = math.cos(box.yaw), math.sin(box.yaw)
-    half_length, half_width = box.length / 2.0, box.width / 2.0
-    corners = [
-        (box.x + cos * u - sin * v, box.y + sin * u + cos * v)
-        for u, v in (
-            (half_length, -half_width),
-            (half_length, half_width),
-            (-half_length, half_width),
-            (-half_length, -half_width),
-        )
-    ]
+    corners = box.corners()
     faces = []
     for index, (start, end) in enumerate(itertools.pairwise([*corners, corners[0]])):
         outward = box.yaw + index * math.pi / 2.0

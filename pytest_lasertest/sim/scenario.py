@@ -16,11 +16,12 @@ from typing import Literal
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import FloatArray, Obstacle, Point2D, Pose2D
-from pytest_lasertest.nav.protocol import Controller, ControllerFactory, LaserScan, Odometry
-from pytest_lasertest.model.route import scan_count
+from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D
+from pytest_lasertest.model.obstacles import Obstacle
 from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.model.route import scan_count
 from pytest_lasertest.model.sensor import LaserProfile
+from pytest_lasertest.nav.protocol import Controller, ControllerFactory, LaserScan, Odometry
 from pytest_lasertest.sim.client import PhysicsClient, PhysicsWorld
 from pytest_lasertest.sim.drive import Drive, Twist
 from pytest_lasertest.sim.lidar import FlatLidar, noisy, ranges_from_fractions, scan_rays

@@ -6,16 +6,9 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from pytest_lasertest.model.route import NominalPath, nominal_path
-from pytest_lasertest.model.verify import (
-    DIRECTIONS,
-    Direction,
-    DirectionPlan,
-    PairPlan,
-    Scene,
-    Witness,
-)
+from pytest_lasertest.model.plan import DirectionPlan, PairPlan, Witness
 from pytest_lasertest.model.sensor import same_geometry
+from pytest_lasertest.model.verify import DIRECTIONS, Direction, Scene
 from pytest_lasertest.solver.backend import Workspace
 from pytest_lasertest.solver.encoding import ObstacleShape
 from pytest_lasertest.solver.proof import prove
@@ -28,7 +21,6 @@ from pytest_lasertest.solver.search import (
     shapes_for,
 )
 from pytest_lasertest.solver.seeds import Candidates, Seed, candidates, seeds
-from pytest_lasertest.pairsfile.pairs import Pair, PairsFile
 
 SEEDS_PER_ANCHOR = 3  # seeds tried per anchor and shape before the search moves on
 
@@ -144,19 +136,7 @@ def plan_direction(scene: Scene, direction: Direction, settings: SearchSettings)
     return DirectionSearch(scene, direction, settings).run()
 
 
-def plan_pair(spec: PairsFile, pair: Pair, path: NominalPath | None = None) -> PairPlan:
-    """Both directions of one pair of a pairs file, along `path` (by default the route's nominal
-    path, timed at the robot's nominal speed and turn rate)."""
-    robot = spec.robot
-    if path is None:
-        world = spec.world
-        path = nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
-    scene = Scene(pair.baseline.profile, pair.candidate.profile, robot, path)
-    settings = SearchSettings(
-        witnesses=spec.settings.witnesses,
-        min_size=spec.settings.min_obstacle_size,
-        max_size=spec.settings.max_obstacle_size,
-        constraints=spec.constraints,
-    )
+def plan_pair(name: str, scene: Scene, settings: SearchSettings) -> PairPlan:
+    """Both directions of the pair `name`, whose two scanners and path `scene` holds."""
     plans = tuple(plan_direction(scene, direction, settings) for direction in DIRECTIONS)
-    return PairPlan(pair.name, scene, plans)
+    return PairPlan(name, scene, plans)

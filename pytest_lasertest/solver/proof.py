@@ -15,16 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.plan import Status, Witness
 from pytest_lasertest.model.route import scan_times, swept_polygons
-from pytest_lasertest.model.verify import (
-    ROLES,
-    Direction,
-    Placement,
-    Scene,
-    Status,
-    Witness,
-    verify,
-)
+from pytest_lasertest.model.verify import ROLES, Direction, Placement, Scene, verify
 from pytest_lasertest.solver.backend import Solution, Workspace
 from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of
 from pytest_lasertest.solver.scans import Region, detected, miss_ways, reaches

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from pytest_lasertest.model.geometry import FloatArray
-from pytest_lasertest.model.sensor import FULL_TURN, LaserProfile
+from pytest_lasertest.model.geometry import FULL_TURN, FloatArray
+from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.solver.encoding import ObstacleShape, all_of, any_of, linear, number
 
 # Beyond range is "outside a circle", which is not linear; tangent half-planes stand in for it,

@@ -17,7 +17,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import Box, Cylinder, FloatArray, Obstacle
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
 from pytest_lasertest.model.route import Leg, scan_times, swept_polygons
 from pytest_lasertest.model.verify import (
     REQUIRED_MARGIN,
@@ -28,6 +29,7 @@ from pytest_lasertest.model.verify import (
     last_chance,
     verify,
 )
+from pytest_lasertest.pairsfile.constraints import Constraint
 from pytest_lasertest.solver.backend import RLIMIT, Solution, Workspace
 from pytest_lasertest.solver.encoding import (
     VARIABLES,
@@ -40,7 +42,6 @@ from pytest_lasertest.solver.encoding import (
 from pytest_lasertest.solver.seeds import Seed
 from pytest_lasertest.solver.user import formula_text
 from pytest_lasertest.solver.ways import hides_below, misses
-from pytest_lasertest.pairsfile.constraints import Constraint
 
 # The solver aims a little above the required margin so that rounding to floats cannot undo it.
 TARGET_MARGIN = REQUIRED_MARGIN + 1e-4  # m

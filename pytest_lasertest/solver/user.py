@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from pytest_lasertest.solver.encoding import number
 from pytest_lasertest.pairsfile.constraints import (
     Arithmetic,
     Call,
@@ -13,6 +12,7 @@ from pytest_lasertest.pairsfile.constraints import (
     Term,
     Variable,
 )
+from pytest_lasertest.solver.encoding import number
 
 # The constraint language's variables and the query's: yaw is fixed in each query, not solved for.
 SOLVER_NAMES = {"x": "X", "y": "Y", "size": "S", "height": "H"}

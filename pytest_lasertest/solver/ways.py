@@ -13,9 +13,9 @@ import math
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.geometry import FULL_TURN, FloatArray
+from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.model.verify import Direction, Scene
-from pytest_lasertest.model.sensor import FULL_TURN, LaserProfile
 from pytest_lasertest.solver.encoding import HalfPlane
 from pytest_lasertest.solver.scans import NEAR_SIDES
 

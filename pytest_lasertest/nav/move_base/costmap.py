@@ -28,8 +28,8 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FloatArray, IntArray
-from pytest_lasertest.nav.protocol import LaserScan
 from pytest_lasertest.model.route import place
+from pytest_lasertest.nav.protocol import LaserScan
 
 FREE, INSCRIBED, LETHAL, UNKNOWN = 0, 253, 254, 255
 # costmap_2d's laserScanValidInfCallback: a tenth of a millimetre short of range_max.

@@ -31,13 +31,19 @@ from enum import Enum
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, Point2D
+from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.nav.move_base.costmap import LETHAL, Costmap, CostmapSettings, InflationCost
 from pytest_lasertest.nav.move_base.dwa import LocalPlanner, Surroundings
 from pytest_lasertest.nav.move_base.navfn import plan_path
-from pytest_lasertest.nav.protocol import LaserScan, Odometry
-from pytest_lasertest.nav.move_base.recovery import BackUp, ClearCostmap, Pose, Recovery, RotateInPlace
+from pytest_lasertest.nav.move_base.recovery import (
+    BackUp,
+    ClearCostmap,
+    Pose,
+    Recovery,
+    RotateInPlace,
+)
 from pytest_lasertest.nav.move_base.settings import NavigationSettings
-from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.nav.protocol import LaserScan, Odometry
 
 # base_local_planner's prunePlan drops the plan up to its first point this near the robot.
 PRUNE_DISTANCE = 1.0  # m

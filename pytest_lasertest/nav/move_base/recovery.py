@@ -14,7 +14,7 @@ from typing import Protocol
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.geometry import FloatArray, wrap_angle
 from pytest_lasertest.nav.move_base.costmap import Costmap
 
 Pose = tuple[float, float, float]  # [x, y, yaw] m, m, rad in the odom frame
@@ -82,9 +82,9 @@ class RotateInPlace:
         settings, yaw = self.settings, pose[2]
         if self._start is None:
             self._start = yaw
-        to_half = abs(_wrapped(yaw - (self._start + math.pi)))
+        to_half = abs(wrap_angle(yaw - (self._start + math.pi)))
         self._half_way = self._half_way or to_half < settings.tolerance
-        left = abs(_wrapped(yaw - self._start)) if self._half_way else math.pi + to_half
+        left = abs(wrap_angle(yaw - self._start)) if self._half_way else math.pi + to_half
         if self._half_way and left <= settings.tolerance:
             return None
         turns = yaw + np.arange(0.0, left, settings.sim_granularity)
@@ -126,8 +126,3 @@ class BackUp:
         if not self.clear(way):
             return None
         return -self.speed, 0.0
-
-
-def _wrapped(angle: float) -> float:
-    """The angle in [-pi, pi) rad."""
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi

@@ -1,15 +1,32 @@
-"""What every item of a pair shares: its pairs file and pair, its markers, the run's options,
-and a report location at the pair's line."""
+"""What every item of a pair shares: its pairs file and pair, its markers, the run's session and
+options, a report location at the pair's line, and how its failures are shown.
+
+An item fails by raising `ItemFailure` with its whole report, written by `reports/`; any other
+exception is a bug in the plugin or the controller under test, and pytest shows its traceback.
+"""
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import pytest
 
-from pytest_lasertest.plugin.options import OPTIONS_KEY, LaserOptions
 from pytest_lasertest.pairsfile import Pair, PairsFile
+from pytest_lasertest.plugin.options import LaserOptions
+from pytest_lasertest.plugin.session import LaserSession
+from pytest_lasertest.reports.formats import Replay
+
+if TYPE_CHECKING:
+    from _pytest._code.code import TerminalRepr, TracebackStyle
+
+
+class ItemFailure(Exception):
+    """An item's failure, with the report that explains it in full."""
+
+    def __init__(self, report: str) -> None:
+        super().__init__(report.partition("\n")[0])
+        self.report = report
 
 
 class PairItem(pytest.Item):
@@ -25,8 +42,25 @@ class PairItem(pytest.Item):
         self.add_marker(self.kind)
 
     @property
+    def lasertest(self) -> LaserSession:
+        """The run's session: its options, plans, drives and simulator."""
+        return LaserSession.of(self.config)
+
+    @property
     def options(self) -> LaserOptions:
-        return self.config.stash[OPTIONS_KEY]
+        return self.lasertest.options
+
+    @property
+    def replay(self) -> Replay:
+        """How to run this item again, as this run ran it."""
+        return Replay(self.nodeid, self.options.replay_options())
 
     def reportinfo(self) -> tuple[Path, int, str]:
         return self.path, self.pair.location.line - 1, self.name
+
+    def repr_failure(
+        self, excinfo: pytest.ExceptionInfo[BaseException], style: TracebackStyle | None = None
+    ) -> str | TerminalRepr:
+        if isinstance(excinfo.value, ItemFailure):
+            return excinfo.value.report
+        return super().repr_failure(excinfo, style)

@@ -12,17 +12,15 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from _pytest._code.code import TerminalRepr, TracebackStyle
 
-from pytest_lasertest.plugin.items.control import DriveFailed, drive_report, physics_client, run_cache
-from pytest_lasertest.search.drives import drive_pair
-from pytest_lasertest.reports.failure import MEANINGS
-from pytest_lasertest.plugin.items.base import PairItem
-from pytest_lasertest.reports.plan import DETECTED_BY, describe_obstacle
+from pytest_lasertest.model.policy import classify
+from pytest_lasertest.model.verify import DETECTED_BY
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.pairsfile.placements import PinnedPlacement
-from pytest_lasertest.search.trials import classify
+from pytest_lasertest.plugin.items.base import ItemFailure, PairItem
+from pytest_lasertest.reports.drive import MEANINGS, drive_properties, drive_report
+from pytest_lasertest.search.drives import drive_pair
 
 
 class PinnedItem(PairItem):
@@ -38,46 +36,40 @@ class PinnedItem(PairItem):
         self.pinned = pinned
 
     def runtest(self) -> None:
-        pinned = self.pinned
+        pinned, session = self.pinned, self.lasertest
+        client, cache = session.physics_client(), session.run_cache()
         drives = drive_pair(
-            self.spec,
-            self.pair,
-            (pinned.obstacle,),
-            pinned.seed,
-            self.controller,
-            physics_client(self.config),
-            run_cache(self.config),
+            self.spec, self.pair, (pinned.obstacle,), pinned.seed, self.controller, client, cache
         )
         classification = classify(drives.baseline.passed, drives.candidate.passed)
         self.user_properties += [
             ("lasertest.seed", pinned.seed),
             ("lasertest.controller", self.controller.name),
-            ("lasertest.obstacle", describe_obstacle(pinned.obstacle)),
+            ("lasertest.obstacle", pinned.obstacle.describe()),
             ("lasertest.classification", classification),
-            *drives.properties(),
+            *drive_properties(drives),
         ]
         if drives.fails(self.options.policy):
-            raise DriveFailed(
-                f"the candidate fails at the pinned placement {self.name}: "
-                f"{MEANINGS[classification]}",
-                drives,
-                self._details(),
+            raise ItemFailure(
+                drive_report(
+                    f"the candidate fails at the pinned placement {self.name}: "
+                    f"{MEANINGS[classification]}",
+                    self.pair,
+                    self.controller,
+                    drives,
+                    self._details(),
+                    self.options.policy,
+                    self.replay,
+                )
             )
 
     def _details(self) -> list[str]:
         pinned = self.pinned
-        lines = [f"  obstacle   {describe_obstacle(pinned.obstacle)} ({pinned.location})"]
+        lines = [f"  obstacle   {pinned.obstacle.describe()} ({pinned.location})"]
         if pinned.direction is not None:
             lines.append(f"  recorded   where the {DETECTED_BY[pinned.direction]} read it")
         lines.append(f"  noise seed {pinned.seed} (pinned; --laser-seed does not change it)")
         return lines
-
-    def repr_failure(
-        self, excinfo: pytest.ExceptionInfo[BaseException], style: TracebackStyle | None = None
-    ) -> str | TerminalRepr:
-        if isinstance(excinfo.value, DriveFailed):
-            return drive_report(self, self.pair, self.controller, excinfo.value)
-        return super().repr_failure(excinfo, style)
 
     def reportinfo(self) -> tuple[Path, int, str]:
         return self.path, self.pinned.location.line - 1, self.name

@@ -3,91 +3,37 @@ each searching around its witness.
 
 Collection does no solving: item names come from the pair's name, the two directions and
 `settings.witnesses`, so every run and every pytest-xdist worker collects the same items. The
-first item of a pair to run plans the pair (Z3, imported only then) and the plan is kept for the
-session; planning is deterministic, so workers that plan the same pair find the same witnesses.
-Each item then perturbs its witness with Hypothesis (`perturb.py`, imported only then) within
-the box where it stays discriminating (`offsets.py`), and a failure shrinks toward the witness.
+first item of a pair to run plans the pair (`LaserSession.plan`; Z3 is imported only then) and
+the plan is kept for the session. Each item then perturbs its witness with Hypothesis
+(`search/perturb.py`, imported only then) within the box where it stays discriminating
+(`search/offsets.py`), and a failure shrinks toward the witness.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import hashlib
 from pathlib import Path
 from typing import Any, cast
 
 import numpy as np
 import pytest
-from _pytest._code.code import TerminalRepr, TracebackStyle
 
-from pytest_lasertest.artifacts.files import artifact_path, write_json
-from pytest_lasertest.plugin.items.control import CONTROL, control_drive, physics_client, run_cache
-from pytest_lasertest.search.drives import PairDrive, solver_path
-from pytest_lasertest.reports.failure import (
-    MEANINGS,
-    beam_lines,
-    failure_properties,
-    margin_line,
-    margins_text,
-    oracle_lines,
-    search_line,
-    search_properties,
-    trial_lines,
-)
-from pytest_lasertest.search.offsets import OffsetBox, offset_box
-from pytest_lasertest.plugin.items.base import PairItem
-from pytest_lasertest.model.verify import (
-    DIRECTIONS,
-    REQUIRED_MARGIN,
-    Direction,
-    DirectionPlan,
-    PairPlan,
-    Scene,
-    Verification,
-    Witness,
-    verify,
-)
-from pytest_lasertest.reports.plan import DETECTED_BY, describe_obstacle, witness_json
+from pytest_lasertest.model.plan import DirectionPlan, Witness
+from pytest_lasertest.model.verify import DIRECTIONS, Direction, Scene, Verification, verify
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
-from pytest_lasertest.inputs.errors import display_path
-from pytest_lasertest.search.trials import Setting, TrialFailed, TrialResult, Trials
-
-REPRO_SUFFIX = ".lasertest.yaml"
-
-# The session's plans, by (pairs file path, pair name): the items of a pair plan it once.
-PLANS_KEY = pytest.StashKey[dict[tuple[Path, str], PairPlan]]()
-
-
-class VerificationFailed(Exception):
-    """The exact ray cast rejects a witness the solver returned: a bug in the solver."""
-
-    def __init__(self, witness: Witness, verification: Verification, artifact: Path | None) -> None:
-        super().__init__(witness.id)
-        self.witness = witness
-        self.verification = verification
-        self.artifact = artifact
-
-
-class PlacementFailed(Exception):
-    """The search found a perturbation of the witness that the policy fails, and shrank it."""
-
-    def __init__(
-        self,
-        witness: Witness,
-        result: TrialResult,
-        trials: Trials,
-        box: OffsetBox,
-        artifacts: tuple[Path, ...],
-        notes: tuple[str, ...],
-    ) -> None:
-        super().__init__(witness.id)
-        self.witness = witness
-        self.result = result
-        self.trials = trials
-        self.box = box
-        self.artifacts = artifacts
-        self.notes = notes
+from pytest_lasertest.plugin.items.base import ItemFailure, PairItem
+from pytest_lasertest.plugin.items.control import ControlItem
+from pytest_lasertest.reports.failure import (
+    PlacementFailure,
+    failure_properties,
+    failure_report,
+    rejection_report,
+    search_properties,
+    witness_properties,
+)
+from pytest_lasertest.search.offsets import OffsetBox, offset_box
+from pytest_lasertest.search.trials import Setting, TrialFailed, Trials
 
 
 class PlacementItem(PairItem):
@@ -104,21 +50,24 @@ class PlacementItem(PairItem):
         self.index = index
 
     def runtest(self) -> None:
-        plan = self._pair_plan()
+        session = self.lasertest
+        plan = session.plan(self.spec, self.pair, self.controller)
         directed = plan.direction(self.direction)
         witness = _witness(directed, self.index)
         if witness is None:
             # Reported at the pair's line, not at this one.
             raise pytest.skip.Exception(skip_reason(directed), _use_item_location=True)
         verification = verify(plan.scene, witness.placement)
-        self._record(witness, verification)
+        self.user_properties += [
+            ("lasertest.seed", self.options.seed),
+            *witness_properties(witness, verification),
+        ]
         if not verification.holds():
-            artifact = self._write_artifact(witness, verification)
-            raise VerificationFailed(witness, verification, artifact)
-        if self._control().fails(self.options.policy):
+            self._reject(witness, verification)
+        if session.control_drive(self.spec, self.pair, self.controller).fails(self.options.policy):
             raise pytest.skip.Exception(
-                f"the candidate already fails without any obstacle: see {self.pair.name}"
-                f"[{CONTROL}]",
+                f"the candidate already fails without any obstacle: see "
+                f"{ControlItem.name_of(self.pair)}",
                 _use_item_location=True,
             )
         self._search(plan.scene, witness)
@@ -127,26 +76,30 @@ class PlacementItem(PairItem):
         """Perturb the witness with Hypothesis; a failure shrinks and fails the item."""
         from pytest_lasertest.search.perturb import search
 
-        budget, settings = self.options.budget, self.spec.settings
+        options, settings = self.options, self.spec.settings
         sizes = (settings.min_obstacle_size, settings.max_obstacle_size)
         seed = self._seed()
         box = offset_box(scene, witness.placement, sizes, np.random.default_rng(seed))
+        session = self.lasertest
+        setting = Setting(
+            self.spec,
+            self.pair,
+            self.controller,
+            options.seed,
+            session.physics_client(),
+            session.run_cache(),
+        )
         trials = Trials(
-            self._setting(),
+            setting,
             scene,
             witness.placement,
             sizes,
-            self.options.policy,
-            budget.shrink_simulations,
+            options.policy,
+            options.budget.shrink_simulations,
         )
+        database = self.config.rootpath / ".hypothesis" / "examples"
         outcome = search(
-            box,
-            trials,
-            TrialFailed,
-            budget,
-            key=self.nodeid,
-            seed=seed,
-            database=self._database(),
+            box, trials, TrialFailed, options.budget, key=self.nodeid, seed=seed, database=database
         )
         # Hypothesis's pytest plugin shows this under --hypothesis-show-statistics.
         self.hypothesis_statistics = outcome.statistics
@@ -157,160 +110,53 @@ class PlacementItem(PairItem):
         if outcome.failure is not None:
             self._fail(witness, cast(TrialFailed, outcome.failure), trials, box)
 
-    def _fail(self, witness: Witness, failure: TrialFailed, trials: Trials, box: OffsetBox) -> None:
+    def _fail(self, witness: Witness, failed: TrialFailed, trials: Trials, box: OffsetBox) -> None:
         """Record the minimal failure, write its artifacts, and fail the item with it."""
-        result = failure.result
-        self.user_properties += failure_properties(result)
-        paths = self._write_failure(witness, result, trials, box)
-        notes = tuple(str(note) for note in getattr(failure, "__notes__", ()))
-        raise PlacementFailed(witness, result, trials, box, paths, notes)
-
-    def _setting(self) -> Setting:
-        return Setting(
+        self.user_properties += failure_properties(failed.result)
+        failure = PlacementFailure(
+            self.nodeid,
             self.spec,
             self.pair,
             self.controller,
+            witness,
+            failed.result,
+            trials,
+            box,
+            tuple(str(note) for note in getattr(failed, "__notes__", ())),
             self.options.seed,
-            physics_client(self.config),
-            run_cache(self.config),
+            self.options.recorded(),
         )
+        raise ItemFailure(failure_report(failure, self.replay, self._write_failure(failure)))
+
+    def _reject(self, witness: Witness, verification: Verification) -> None:
+        """Fail the item with the witness the solver should not have returned."""
+        artifact = None
+        options = self.options
+        if options.artifacts is not None:
+            from pytest_lasertest.artifacts.evidence import (
+                evidence_header,
+                write_rejection_evidence,
+            )
+
+            header = evidence_header(self.nodeid, self.spec, self.pair, options.recorded())
+            artifact = write_rejection_evidence(
+                options.artifacts, self.nodeid, witness, verification, header
+            )
+        report = rejection_report(self.pair, witness, verification, self.replay, artifact)
+        raise ItemFailure(report)
 
     def _seed(self) -> int:
         """The search's seed: the run's, made the item's own by its node id."""
         digest = hashlib.sha256(f"{self.options.seed}:{self.nodeid}".encode()).digest()
         return int.from_bytes(digest[:4], "big")
 
-    def _database(self) -> Path:
-        return self.config.rootpath / ".hypothesis" / "examples"
-
-    def _pair_plan(self) -> PairPlan:
-        plans = self.config.stash.setdefault(PLANS_KEY, {})
-        key = (self.spec.path, self.pair.name)
-        if key not in plans:
-            from pytest_lasertest.solver.plan import plan_pair
-
-            control = self._control()
-            plans[key] = plan_pair(self.spec, self.pair, solver_path(self.spec, control.baseline))
-        return plans[key]
-
-    def _control(self) -> PairDrive:
-        return control_drive(self.config, self.spec, self.pair, self.controller)
-
-    def _record(self, witness: Witness, verification: Verification) -> None:
-        self.user_properties += [
-            ("lasertest.seed", self.options.seed),
-            ("lasertest.obstacle", describe_obstacle(witness.placement.obstacle)),
-            ("lasertest.margin", verification.margin),
-            ("lasertest.lead", verification.lead),
-            ("lasertest.late", verification.late),
-            ("lasertest.detected_by", DETECTED_BY[self.direction]),
-        ]
-
-    def _write_artifact(self, witness: Witness, verification: Verification) -> Path | None:
-        if self.options.artifacts is None:
-            return None
-        evidence = {
-            "item": self.nodeid,
-            "pairs_file": str(self.spec.path),
-            "pair": self.pair.name,
-            "seed": self.options.seed,
-            "policy": self.options.policy,
-            "witness": witness_json(witness),
-            "verification": dataclasses.asdict(verification),
-        }
-        return write_json(artifact_path(self.options.artifacts, self.nodeid, ".json"), evidence)
-
-    def _write_failure(
-        self, witness: Witness, result: TrialResult, trials: Trials, box: OffsetBox
-    ) -> tuple[Path, ...]:
+    def _write_failure(self, failure: PlacementFailure) -> tuple[Path, ...]:
         """The failure's artifacts, if the run asked for them."""
-        options = self.options
-        if options.artifacts is None:
+        if self.options.artifacts is None:
             return ()
-        from pytest_lasertest.artifacts.evidence import Failure, write_evidence
+        from pytest_lasertest.artifacts.evidence import write_evidence
 
-        failure = Failure(
-            self.nodeid,
-            self.spec,
-            self.pair,
-            witness,
-            result,
-            trials,
-            box,
-            options.seed,
-            options.recorded(),
-        )
-        return write_evidence(options.artifacts, failure)
-
-    def repr_failure(
-        self, excinfo: pytest.ExceptionInfo[BaseException], style: TracebackStyle | None = None
-    ) -> str | TerminalRepr:
-        if isinstance(excinfo.value, VerificationFailed):
-            return self._rejection_report(excinfo.value)
-        if isinstance(excinfo.value, PlacementFailed):
-            return self._failure_report(excinfo.value)
-        return super().repr_failure(excinfo, style)
-
-    def _failure_report(self, failed: PlacementFailed) -> str:
-        pair, result, options = self.pair, failed.result, self.options
-        scene = self._pair_plan().scene
-        oracles = " and ".join(result.oracles())
-        lines = [
-            f"the candidate fails ({oracles}) near witness {failed.witness.id}: "
-            f"{MEANINGS[result.classification]}",
-            f"  pair       {pair.name} ({pair.location})",
-            f"  controller {self.controller.name} ({self.controller.source})",
-            *oracle_lines(result),
-            f"  witness    {describe_obstacle(failed.witness.placement.obstacle)}",
-            f"  minimal    {describe_obstacle(result.placement.obstacle)}",
-            f"  change     {result.offset.describe()} (the smallest the search found that fails)",
-            margin_line(result.verification),
-            *beam_lines(scene, result),
-            *trial_lines(result, pair),
-            search_line(failed.trials, failed.box),
-            # Hypothesis's own notes: the falsifying example and, in profiles that explain, what
-            # its explain phase found.
-            *(f"  hypothesis {note}" for note in failed.notes),
-            f"  policy     {options.policy}",
-            f"  seed       {options.seed}",
-            *self._replay_lines(failed.artifacts),
-        ]
-        return "\n".join(lines)
-
-    def _replay_lines(self, artifacts: tuple[Path, ...]) -> list[str]:
-        rerun = f"pytest '{self.nodeid}' {self.options.replay_options()}"
-        repro = [path for path in artifacts if path.name.endswith(REPRO_SUFFIX)]
-        if not repro:
-            return [f"  replay     {rerun}  (replays this case first, from .hypothesis/)"]
-        return [
-            f"  replay     pytest '{display_path(repro[0])}'  (this case alone, pinned)",
-            f"  rerun      {rerun}  (replays this case first, from .hypothesis/)",
-            *(f"  artifact   {display_path(path)}" for path in artifacts),
-        ]
-
-    def _rejection_report(self, rejected: VerificationFailed) -> str:
-        pair, witness, verification = self.pair, rejected.witness, rejected.verification
-        x, y, yaw = witness.pose
-        lines = [
-            f"the exact ray cast rejects witness {witness.id}, which the solver returned as "
-            "verified: this is a bug in pytest-lasertest's solver, please report it with this "
-            "pairs file",
-            f"  pair       {pair.name} ({pair.location})",
-            f"  baseline   {pair.baseline.label}: {pair.baseline.profile.describe()}",
-            f"  candidate  {pair.candidate.label}: {pair.candidate.profile.describe()}",
-            f"  obstacle   {describe_obstacle(witness.placement.obstacle)}",
-            f"  read by    the {DETECTED_BY[self.direction]} at t = "
-            f"{witness.placement.anchor:.2f} s, robot at ({x:.2f}, {y:.2f}, {yaw:.2f})",
-            f"  margins    {margins_text(verification)}; each must reach "
-            f"{REQUIRED_MARGIN * 1000:.1f} mm",
-        ]
-        if verification.seen_by_misser_at:
-            times = ", ".join(f"{time:.2f}" for time in verification.seen_by_misser_at)
-            lines.append(f"  misser     reads it at t = {times} s")
-        lines.append(f"  replay     pytest '{self.nodeid}' {self.options.replay_options()}")
-        if rejected.artifact is not None:
-            lines.append(f"  evidence   {display_path(rejected.artifact)}")
-        return "\n".join(lines)
+        return write_evidence(self.options.artifacts, failure)
 
 
 def placement_items(

@@ -1,0 +1,42 @@
+"""The coverage item of a pair, `PAIR[coverage]`: the candidate must scan everything its
+baseline scanned, on the same robot (`model/coverage.py`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from pytest_lasertest.model.coverage import CoverageComparison, compare_coverage
+from pytest_lasertest.plugin.items.base import ItemFailure, PairItem
+from pytest_lasertest.reports.coverage import coverage_properties, coverage_report
+
+
+class CoverageItem(PairItem):
+    """Checks that the candidate scans everything its baseline scanned, on the same robot."""
+
+    kind = "coverage"
+
+    def runtest(self) -> None:
+        comparison = compare_coverage(
+            self.pair.baseline.profile,
+            self.pair.candidate.profile,
+            min_obstacle_size=self.spec.settings.min_obstacle_size,
+            max_speed=self.spec.robot.max_linear_velocity,
+        )
+        self.user_properties += [
+            ("lasertest.seed", self.options.seed),
+            *coverage_properties(comparison),
+        ]
+        if comparison.losses:
+            artifact = self._write_evidence(comparison)
+            raise ItemFailure(coverage_report(self.pair, comparison, self.replay, artifact))
+
+    def _write_evidence(self, comparison: CoverageComparison) -> Path | None:
+        """The numbers of the loss, if the run asked for artifacts."""
+        options = self.options
+        if options.artifacts is None:
+            return None
+        from pytest_lasertest.artifacts.evidence import evidence_header, write_coverage_evidence
+
+        header = evidence_header(self.nodeid, self.spec, self.pair, options.recorded())
+        scanners = (self.pair.baseline, self.pair.candidate)
+        return write_coverage_evidence(options.artifacts, self.nodeid, scanners, comparison, header)

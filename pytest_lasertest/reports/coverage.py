@@ -1,0 +1,55 @@
+"""What a failing coverage item tells its reader: each attribute the candidate scans less of,
+and the other changes of the pair."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from pytest_lasertest.inputs.errors import display_path
+from pytest_lasertest.model.coverage import CoverageChange, CoverageComparison
+from pytest_lasertest.pairsfile import Pair
+from pytest_lasertest.reports.formats import Replay
+
+
+def coverage_report(
+    pair: Pair, comparison: CoverageComparison, replay: Replay, artifact: Path | None
+) -> str:
+    """The losses of coverage, then the changes that lose nothing."""
+    losses = comparison.losses
+    lines = [
+        f"the candidate scans less than the baseline: {len(losses)} "
+        f"loss{'es' if len(losses) > 1 else ''} of coverage",
+        f"  pair       {pair.name} ({pair.location})",
+        f"  baseline   {pair.baseline.label}: {pair.baseline.profile.describe()}",
+        f"  candidate  {pair.candidate.label}: {pair.candidate.profile.describe()}",
+        "  lost:",
+        *(_change_line(change) for change in losses),
+    ]
+    others = [change for change in comparison.changes if not change.worse]
+    if others:
+        lines += ["  other changes:", *(_change_line(change) for change in others)]
+    lines.append(replay.line())
+    if artifact is not None:
+        lines.append(f"  evidence   {display_path(artifact)}")
+    return "\n".join(lines)
+
+
+def coverage_properties(comparison: CoverageComparison) -> list[tuple[str, object]]:
+    """How many losses, and each change as `baseline -> candidate unit`."""
+    return [
+        ("lasertest.coverage_losses", len(comparison.losses)),
+        *(
+            (
+                f"lasertest.{change.attribute}",
+                f"{change.baseline:g} -> {change.candidate:g} {change.unit}",
+            )
+            for change in comparison.changes
+        ),
+    ]
+
+
+def _change_line(change: CoverageChange) -> str:
+    return (
+        f"    {change.attribute}: {change.baseline:g} -> {change.candidate:g} {change.unit}; "
+        f"{change.detail}"
+    )

@@ -1,0 +1,67 @@
+"""What a drive tells its reader: each robot's scanner and what its run did, the controller, the
+policy and how to replay it; and the figures JUnit XML and the run's summary take from it, as
+plain values that cross to the pytest-xdist controller."""
+
+from __future__ import annotations
+
+from pytest_lasertest.model.policy import Classification, Policy
+from pytest_lasertest.pairsfile import Pair
+from pytest_lasertest.pairsfile.controller import ControllerChoice
+from pytest_lasertest.reports.formats import Replay, run_line
+from pytest_lasertest.search.drives import PairDrive
+from pytest_lasertest.sim.scenario import Run
+
+# What each class of failure means for the change.
+MEANINGS: dict[Classification, str] = {
+    "regression": "a regression: the baseline passes where the candidate fails",
+    "pre-existing": "pre-existing: the baseline fails here too",
+    "improvement": "an improvement: the candidate passes where the baseline fails",
+    "unchanged": "unchanged: both pass",
+}
+
+
+def drive_report(
+    headline: str,
+    pair: Pair,
+    controller: ControllerChoice,
+    drives: PairDrive,
+    details: list[str],
+    policy: Policy,
+    replay: Replay,
+) -> str:
+    """A failing drive: what failed, the controller, what happened to each robot, and how to
+    replay it."""
+    lines = [
+        headline,
+        f"  pair       {pair.name} ({pair.location})",
+        controller_line(controller),
+        *details,
+        run_line("baseline", pair.baseline.label, drives.baseline),
+        run_line("candidate", pair.candidate.label, drives.candidate),
+        f"  policy     {policy}",
+        replay.line(),
+    ]
+    return "\n".join(lines)
+
+
+def controller_line(controller: ControllerChoice) -> str:
+    """`  controller move_base (the default)`."""
+    return f"  controller {controller.name} ({controller.source})"
+
+
+def drive_properties(drives: PairDrive) -> list[tuple[str, object]]:
+    """Each oracle's margin and outcome for both robots."""
+    return run_properties("baseline", drives.baseline) + run_properties(
+        "candidate", drives.candidate
+    )
+
+
+def run_properties(side: str, run: Run) -> list[tuple[str, object]]:
+    """Each oracle's outcome and margin in one robot's run, and its trajectory's digest."""
+    rows: list[tuple[str, object]] = []
+    for oracle, verdict in run.verdicts.named():
+        rows.append((f"lasertest.{side}.{oracle}", "pass" if verdict.passed else "fail"))
+        margin = round(float(verdict.margin), 4)  # m; a plain float crosses to xdist
+        rows.append((f"lasertest.{side}.{oracle}_margin", margin))
+    rows.append((f"lasertest.{side}.trajectory", run.digest()[:16]))
+    return rows

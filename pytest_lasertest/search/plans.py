@@ -1,0 +1,48 @@
+"""A pair of a pairs file as the solver plans it: both scanners on the pairs file's robot, along
+its route, with its settings and constraints.
+
+The path is the route's legs and turns, timed as the baseline robot drove them without an
+obstacle when that run is given (as the gate's items and `lasertest plan` do), else at the robot's
+nominal speed and turn rate. The solver, and with it Z3, is imported on the first plan.
+"""
+
+from __future__ import annotations
+
+from pytest_lasertest.model.plan import PairPlan
+from pytest_lasertest.model.route import NominalPath, nominal_path, timed_to
+from pytest_lasertest.model.verify import Scene
+from pytest_lasertest.pairsfile import Pair, PairsFile
+from pytest_lasertest.sim.scenario import Run
+
+
+def plan_for(spec: PairsFile, pair: Pair, control: Run | None = None) -> PairPlan:
+    """Both directions of the pair, along the path `control` (the baseline's obstacle-free run)
+    drove, or the nominal path without it."""
+    from pytest_lasertest.solver.plan import plan_pair
+    from pytest_lasertest.solver.search import SearchSettings
+
+    settings = SearchSettings(
+        witnesses=spec.settings.witnesses,
+        min_size=spec.settings.min_obstacle_size,
+        max_size=spec.settings.max_obstacle_size,
+        constraints=spec.constraints,
+    )
+    return plan_pair(pair.name, pair_scene(spec, pair, control), settings)
+
+
+def pair_scene(spec: PairsFile, pair: Pair, control: Run | None = None) -> Scene:
+    """Both scanners of the pair on the pairs file's robot, along the path the solver plans on."""
+    path = route_path(spec) if control is None else driven_path(spec, control)
+    return Scene(pair.baseline.profile, pair.candidate.profile, spec.robot, path)
+
+
+def route_path(spec: PairsFile) -> NominalPath:
+    """The route's legs and turns at the robot's nominal speed and turn rate."""
+    world, robot = spec.world, spec.robot
+    return nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
+
+
+def driven_path(spec: PairsFile, control: Run) -> NominalPath:
+    """The route's legs and turns, timed as `control`, the baseline's obstacle-free run, drove
+    them."""
+    return timed_to(route_path(spec), control.times, control.poses)
