@@ -1,4 +1,5 @@
-"""The one error a spec file can raise: where, which field, what is wrong, how to fix it."""
+"""The one error a file the user wrote can raise: where, which field, what is wrong, and how to
+fix it."""
 
 from __future__ import annotations
 
@@ -19,7 +20,8 @@ class Location:
 
 
 class SpecError(Exception):
-    """A spec file cannot be used as written."""
+    """A file the user wrote (a pairs file, robot, catalogue model or description) cannot be
+    used as written."""
 
     def __init__(self, location: Location, field: str, problem: str, fix: str) -> None:
         super().__init__(location, field, problem, fix)

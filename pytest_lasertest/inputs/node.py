@@ -14,7 +14,7 @@ from pytest_lasertest.inputs.yamlfile import YamlList, YamlMap, load_yaml
 
 @dataclass(frozen=True)
 class SpecNode:
-    """One value of a spec file, its line, and its dotted field name from the file's root."""
+    """One value of a file the user wrote, its line, and its dotted field name from the root."""
 
     value: object
     location: Location
@@ -138,7 +138,7 @@ def _join(field: str, key: str) -> str:
 
 
 def read_root(path: Path, *, what: str, needs: str) -> SpecNode:
-    """The top-level mapping of a spec file; an empty file is an error that says what it needs."""
+    """The top-level mapping of a YAML file; an empty file is an error that says what it needs."""
     value = load_yaml(path)
     if value is None:
         raise SpecError(Location(path, 1), "", f"the {what} is empty", f"it needs {needs}")

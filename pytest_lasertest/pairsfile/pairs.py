@@ -41,6 +41,11 @@ class Settings:
     max_obstacle_size: float = 1.0  # m, the widest obstacle placed
     witnesses: int = 3  # per pair and direction: one test item each
 
+    @property
+    def obstacle_sizes(self) -> tuple[float, float]:
+        """The thinnest obstacle the robot must see and the widest one placed (m)."""
+        return self.min_obstacle_size, self.max_obstacle_size
+
 
 @dataclass(frozen=True)
 class Pair:

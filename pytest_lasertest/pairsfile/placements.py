@@ -8,7 +8,7 @@ its scan noise:
         seed: 1234
         direction: candidate-misses   # optional: which scanner must miss it
 
-The fields of each shape are those of `geometry.Box` and `geometry.Cylinder`, so that
+The fields of each shape are those of `obstacles.Box` and `obstacles.Cylinder`, so that
 `obstacle_fields` writes exactly what `read_placements` reads back.
 """
 

@@ -1,9 +1,10 @@
 """The hooks pytest-lasertest adds, for conftest files and plugins to implement.
 
-plugin.py registers them in `pytest_addhooks`. They are called through the pairs file's own hook
-proxy, so a conftest file's implementation applies to the pairs files in its directory and below,
-as pytest scopes conftest hooks. A pairs file's `controller:` wins over the hook, which wins over
-the default: the hook is not called for a pairs file that names its controller.
+The entry point (`plugin/__init__.py`) registers them in `pytest_addhooks`. They are called
+through the pairs file's own hook proxy, so a conftest file's implementation applies to the pairs
+files in its directory and below, as pytest scopes conftest hooks. A pairs file's `controller:`
+wins over the hook, which wins over the default: the hook is not called for a pairs file that
+names its controller.
 """
 
 from __future__ import annotations

@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from pytest_lasertest.pairsfile import Pair, PairsFile
     from pytest_lasertest.pairsfile.controller import ControllerChoice
     from pytest_lasertest.search.drives import PairDrive, RunCache
+    from pytest_lasertest.search.trials import Setting
     from pytest_lasertest.sim.client import PhysicsClient
 
 # The pytest-xdist `workerinput` entry that hands the controller's seed to each worker.
@@ -101,6 +102,14 @@ class LaserSession:
             control = self.control_drive(spec, pair, controller)
             self._plans[key] = plan_for(spec, pair, control.baseline)
         return self._plans[key]
+
+    def setting(self, spec: PairsFile, pair: Pair, controller: ControllerChoice) -> Setting:
+        """Where the pair's trials drive: its controller, the run's seed, this process's
+        simulator and runs."""
+        from pytest_lasertest.search.trials import Setting
+
+        client, cache = self.physics_client(), self.run_cache()
+        return Setting(spec, pair, controller, self.options.seed, client, cache)
 
     def pytest_report_header(self, config: pytest.Config) -> str:
         artifacts = f", artifacts in {self.options.artifacts}" if self.options.artifacts else ""

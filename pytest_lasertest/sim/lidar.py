@@ -3,7 +3,7 @@
 Two ways to cast them: in PyBullet (`PhysicsWorld.cast`, what the scene really holds) or flat,
 against the obstacles as upright prisms (every obstacle here is one, standing on the ground),
 casting only the beams that can reach each one. Tests hold the flat cast equal to PyBullet's beam
-for beam, and to `geometry.ray_distances`.
+for beam, and to `obstacles.ray_distances`.
 """
 
 from __future__ import annotations
@@ -48,7 +48,7 @@ class FlatLidar:
     can touch it are cast: those between the bearings of a cylinder's two tangents, and those
     between the bearings of the two ends of each face of a box that faces the scanner. A beam in
     such a window meets the face (or the circle) first, at a distance one cosine gives. The
-    ranges equal those of casting every beam with `geometry.ray_distances` (a test holds them
+    ranges equal those of casting every beam with `obstacles.ray_distances` (a test holds them
     so).
     """
 

@@ -28,7 +28,7 @@ from pytest_lasertest.sim.lidar import FlatLidar, noisy, ranges_from_fractions, 
 from pytest_lasertest.sim.oracles import Referee, Rules, Verdicts
 
 # A physics step of one 50 Hz scan period: the Husky's drive reaches its commands within 3 % at
-# 5-20 ms steps (tests/test_drive.py), and the longest keeps the run cheapest.
+# 5-20 ms steps (tests/sim/test_drive.py), and the longest keeps the run cheapest.
 TIME_STEP = 0.02  # s
 Caster = Literal["flat", "pybullet"]
 
@@ -47,7 +47,7 @@ class Scenario:
     time_step: float = TIME_STEP  # s
     rules: Rules = field(default_factory=Rules)
     # Where the rays are cast: PyBullet's rayTestBatch, or the flat ray cast it equals on these
-    # scenes of upright obstacles on level ground (tests/test_sim.py holds them equal).
+    # scenes of upright obstacles on level ground (tests/sim/test_lidar.py holds them equal).
     caster: Caster = "flat"
 
 

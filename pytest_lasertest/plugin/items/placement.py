@@ -33,7 +33,7 @@ from pytest_lasertest.reports.failure import (
     witness_properties,
 )
 from pytest_lasertest.search.offsets import OffsetBox, offset_box
-from pytest_lasertest.search.trials import Setting, TrialFailed, Trials
+from pytest_lasertest.search.trials import TrialFailed, Trials
 
 
 class PlacementItem(PairItem):
@@ -76,27 +76,11 @@ class PlacementItem(PairItem):
         """Perturb the witness with Hypothesis; a failure shrinks and fails the item."""
         from pytest_lasertest.search.perturb import search
 
-        options, settings = self.options, self.spec.settings
-        sizes = (settings.min_obstacle_size, settings.max_obstacle_size)
-        seed = self._seed()
+        options, sizes, seed = self.options, self.spec.settings.obstacle_sizes, self._seed()
         box = offset_box(scene, witness.placement, sizes, np.random.default_rng(seed))
-        session = self.lasertest
-        setting = Setting(
-            self.spec,
-            self.pair,
-            self.controller,
-            options.seed,
-            session.physics_client(),
-            session.run_cache(),
-        )
-        trials = Trials(
-            setting,
-            scene,
-            witness.placement,
-            sizes,
-            options.policy,
-            options.budget.shrink_simulations,
-        )
+        setting = self.lasertest.setting(self.spec, self.pair, self.controller)
+        shrink = options.budget.shrink_simulations
+        trials = Trials(setting, scene, witness.placement, sizes, options.policy, shrink)
         database = self.config.rootpath / ".hypothesis" / "examples"
         outcome = search(
             box, trials, TrialFailed, options.budget, key=self.nodeid, seed=seed, database=database

@@ -1,0 +1,321 @@
+"""The repro of a failing item: a pairs file holding its pair and one pinned placement, which
+loads from wherever it is written and gives back the same robot, world, scanners and obstacle."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import sys
+import uuid
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+import yaml
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from pytest_lasertest.artifacts.repro import repro_yaml, write_repro
+from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
+from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
+from pytest_lasertest.pairsfile.placements import PinnedPlacement, obstacle_fields
+from tests.helpers import EXAMPLES
+from tests.helpers.git import commit_everything
+from tests.helpers.model import RECORDED
+from tests.helpers.texts import MY_ROBOT, PAIRS, ROBOT, VALID_PAIRS, write
+
+HEADER = ("lasertest repro of gate.lasertest.yaml::size[candidate-misses-0]", "replay: pytest X")
+
+
+def pair_named(spec: PairsFile, name: str) -> Pair:
+    return next(pair for pair in spec.pairs if pair.name == name)
+
+
+def pinned_for(pair: Pair, obstacle: Obstacle = RECORDED, seed: int = 1234) -> PinnedPlacement:
+    return PinnedPlacement(obstacle, seed, "candidate-misses", pair.location)
+
+
+def replay(spec: PairsFile, name: str, pinned: PinnedPlacement, destination: Path) -> PairsFile:
+    """The repro of `pinned` on pair `name`, written at `destination` and loaded from there."""
+    pair = pair_named(spec, name)
+    write_repro(destination, spec, pair, pinned, HEADER)
+    return load_pairs_file(destination)
+
+
+def assert_replays(
+    original: PairsFile, name: str, pinned: PinnedPlacement, repro: PairsFile
+) -> None:
+    """The repro holds the original's robot, world and pair, with `pinned` as its one placement."""
+    assert repro.robot == original.robot
+    assert repro.world == original.world
+    (pair,) = repro.pairs
+    assert pair.name == name
+    assert pair.baseline == pair_named(original, name).baseline
+    assert pair.candidate == pair_named(original, name).candidate
+    (placement,) = pair.placements
+    assert dataclasses.replace(placement, location=pinned.location) == pinned
+
+
+# The repro
+
+
+def test_the_paper_s_size_failure_replays_from_its_repro_in_another_directory(
+    tmp_path: Path,
+) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pinned = pinned_for(pair_named(original, "size"))
+    destination = tmp_path / "artifacts" / "paper" / "size-candidate-misses-0.lasertest.yaml"
+    assert_replays(original, "size", pinned, replay(original, "size", pinned, destination))
+
+
+def test_a_repro_keeps_the_model_overrides_as_written_and_drops_settings_and_other_pairs(
+    tmp_path: Path,
+) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    written = yaml.safe_load(repro_yaml(original, pair, pinned_for(pair), tmp_path / "r.yaml", ()))
+    assert list(written) == ["robot", "world", "pairs"]
+    assert list(written["pairs"]) == ["size"]
+    assert written["pairs"]["size"]["candidate"] == {
+        "model": "clearpath_lms1xx_gazebo",
+        "samples": 16,
+        "min_angle": -1.57,
+        "max_angle": 1.57,
+        "range": {"max": 10.0},
+    }
+    assert written["pairs"]["size"]["placements"] == [
+        {"obstacle": obstacle_fields(RECORDED), "seed": 1234, "direction": "candidate-misses"}
+    ]
+
+
+def test_a_repro_starts_with_the_header_as_comments_then_a_blank_line(tmp_path: Path) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    header = ["first line", "", "two\nlines"]
+    text = repro_yaml(original, pair, pinned_for(pair), tmp_path / "r.yaml", header)
+    assert text.startswith("# first line\n#\n# two\n# lines\n\nrobot: husky\n")
+
+
+def test_a_placement_without_a_direction_is_written_without_one(tmp_path: Path) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    pinned = PinnedPlacement(Box(6.7, 0.0, 0.1, 0.657, 0.657, 0.328), 7, None, pair.location)
+    destination = tmp_path / "box.lasertest.yaml"
+    assert_replays(original, "size", pinned, replay(original, "size", pinned, destination))
+    assert "direction" not in destination.read_text()
+
+
+@pytest.mark.parametrize("written", ["robots/mybot", "robots/mybot/robot.yaml", "./robots/mybot"])
+@pytest.mark.parametrize(
+    "destination",
+    ["artifacts/gate/to_lms111.lasertest.yaml", "project/regressions/to_lms111.lasertest.yaml"],
+)
+def test_a_robot_directory_given_by_relative_path_is_found_from_the_repro_s_directory(
+    tmp_path: Path, written: str, destination: str
+) -> None:
+    robot_dir = tmp_path / "project" / "robots" / "mybot"
+    write(robot_dir, MY_ROBOT, "robot.yaml")
+    text = VALID_PAIRS.replace("robot: husky", f"robot: {written}")
+    original = load_pairs_file(write(tmp_path / "project", text))
+    pinned = pinned_for(pair_named(original, "to_lms111"))
+    repro = replay(original, "to_lms111", pinned, tmp_path / destination)
+    assert_replays(original, "to_lms111", pinned, repro)
+    assert repro.robot.name == "My bot"
+    robot = yaml.safe_load((tmp_path / destination).read_text())["robot"]
+    assert not Path(robot).is_absolute()
+
+
+def test_a_robot_path_that_would_read_as_a_bundled_name_stays_a_path(tmp_path: Path) -> None:
+    write(tmp_path / "robots" / "husky", MY_ROBOT, "robot.yaml")
+    text = VALID_PAIRS.replace("robot: husky", "robot: ../robots/husky")
+    original = load_pairs_file(write(tmp_path / "project", text))
+    pinned = pinned_for(pair_named(original, "same"))
+    destination = tmp_path / "robots" / "same.lasertest.yaml"
+    repro = replay(original, "same", pinned, destination)
+    assert repro.robot.name == "My bot"
+    assert yaml.safe_load(destination.read_text())["robot"] == "./husky"
+
+
+def test_an_absolute_robot_path_is_kept_as_written(tmp_path: Path) -> None:
+    robot_file = write(tmp_path / "robots" / "mybot", MY_ROBOT, "robot.yaml")
+    text = VALID_PAIRS.replace("robot: husky", f"robot: {robot_file}")
+    original = load_pairs_file(write(tmp_path / "project", text))
+    pinned = pinned_for(pair_named(original, "same"))
+    destination = tmp_path / "elsewhere" / "same.lasertest.yaml"
+    assert_replays(original, "same", pinned, replay(original, "same", pinned, destination))
+    assert yaml.safe_load(destination.read_text())["robot"] == str(robot_file)
+
+
+def test_navigation_overrides_are_copied_so_the_repro_s_robot_navigates_the_same(
+    tmp_path: Path,
+) -> None:
+    text = VALID_PAIRS.replace(
+        "settings:",
+        "navigation:\n"
+        "  move_base: {controller_frequency: 10.0, back_up_recovery: true}\n"
+        "  dwa: {min_vel_x: -0.1, vx_samples: 8}\n"
+        "settings:",
+    )
+    original = load_pairs_file(write(tmp_path / "project", text))
+    assert ("dwa", "min_vel_x", -0.1) in original.robot.navigation
+    pinned = pinned_for(pair_named(original, "to_lms111"))
+    destination = tmp_path / "artifacts" / "to_lms111.lasertest.yaml"
+    assert_replays(
+        original, "to_lms111", pinned, replay(original, "to_lms111", pinned, destination)
+    )
+
+
+def test_profiles_shared_through_yaml_anchors_are_written_out_in_full(tmp_path: Path) -> None:
+    text = VALID_PAIRS.replace(
+        "    baseline:\n      samples: 720", "    baseline: &paper\n      samples: 720"
+    )
+    text = text.replace("    candidate:\n      model: sick_lms111", "    candidate: *paper")
+    original = load_pairs_file(write(tmp_path, text))
+    pinned = pinned_for(pair_named(original, "to_lms111"))
+    destination = tmp_path / "repro" / "to_lms111.lasertest.yaml"
+    assert_replays(
+        original, "to_lms111", pinned, replay(original, "to_lms111", pinned, destination)
+    )
+    assert "&" not in destination.read_text()
+    assert "*" not in destination.read_text()
+
+
+finite = st.floats(-50.0, 50.0, allow_nan=False)
+positive = st.floats(1e-6, 5.0, allow_nan=False)
+obstacles = st.one_of(
+    st.builds(Box, finite, finite, st.floats(-math.pi, math.pi), positive, positive, positive),
+    st.builds(Cylinder, finite, finite, positive, positive),
+)
+
+
+@settings(
+    max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(obstacle=obstacles, seed=st.integers(0, 2**32 - 1))
+def test_every_obstacle_and_seed_comes_back_equal_from_its_repro(
+    tmp_path: Path, obstacle: Obstacle, seed: int
+) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pinned = pinned_for(pair_named(original, "size"), obstacle, seed)
+    repro = replay(original, "size", pinned, tmp_path / "property.lasertest.yaml")
+    assert repro.pairs[0].placements[0].obstacle == obstacle
+    assert repro.pairs[0].placements[0].seed == seed
+
+
+@pytest.fixture
+def controller_module(tmp_path: Path) -> Iterator[str]:
+    """A controller module next to tmp_path/project's pairs file, named uniquely, and unloaded
+    after the test: the import system keeps a module once imported."""
+    name = f"repro_controller_{uuid.uuid4().hex}"
+    write(tmp_path / "project", "def make(robot, route):\n    return None\n", f"{name}.py")
+    yield name
+    sys.modules.pop(name, None)
+
+
+def test_a_controller_module_next_to_the_pairs_file_is_noted_in_a_repro_written_elsewhere(
+    tmp_path: Path, controller_module: str
+) -> None:
+    text = f"controller: {controller_module}:make\n{VALID_PAIRS}"
+    original = load_pairs_file(write(tmp_path / "project", text))
+    pair = pair_named(original, "same")
+    destination = tmp_path / "artifacts" / "same.lasertest.yaml"
+    repro_text = repro_yaml(original, pair, pinned_for(pair), destination, HEADER)
+    comments = [line for line in repro_text.splitlines() if line.startswith("#")]
+    assert comments[:2] == [f"# {line}" for line in HEADER]
+    assert f"controller: {controller_module}:make is the module" in comments[2]
+    assert "make it importable" in comments[2]
+    assert yaml.safe_load(repro_text)["controller"] == f"{controller_module}:make"
+
+
+def test_a_repro_next_to_the_pairs_file_finds_its_controller_module_with_no_note(
+    tmp_path: Path, controller_module: str
+) -> None:
+    text = f"controller: {controller_module}:make\n{VALID_PAIRS}"
+    original = load_pairs_file(write(tmp_path / "project", text))
+    pinned = pinned_for(pair_named(original, "same"))
+    destination = tmp_path / "project" / "same-repro.lasertest.yaml"
+    repro = replay(original, "same", pinned, destination)
+    assert_replays(original, "same", pinned, repro)
+    assert repro.controller is not None
+    assert original.controller is not None
+    assert repro.controller.factory is original.controller.factory
+    assert "importable" not in destination.read_text()
+
+
+def test_a_pair_gone_from_the_file_since_it_was_read_is_a_spec_error(tmp_path: Path) -> None:
+    path = write(tmp_path, VALID_PAIRS)
+    original = load_pairs_file(path)
+    pair = pair_named(original, "same")
+    path.write_text(VALID_PAIRS.replace("  same:", "  renamed:"))
+    with pytest.raises(SpecError, match="the pair is gone from the file"):
+        repro_yaml(original, pair, pinned_for(pair), tmp_path / "r.yaml", ())
+
+
+# Writing atomically
+
+
+def test_write_repro_makes_the_directories_and_leaves_only_the_repro(tmp_path: Path) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    destination = tmp_path / "a" / "b" / "size.lasertest.yaml"
+    assert write_repro(destination, original, pair, pinned_for(pair), HEADER) == destination
+    expected = repro_yaml(original, pair, pinned_for(pair), destination, HEADER)
+    assert destination.read_text(encoding="utf-8") == expected
+    assert os.listdir(destination.parent) == [destination.name]
+
+
+def test_a_failed_write_keeps_the_previous_repro_and_leaves_no_temporary_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    destination = write(tmp_path / "artifacts", "previous repro\n", "size.lasertest.yaml")
+
+    def full_disk(source: str, target: str) -> None:
+        raise OSError(28, "No space left on device")
+
+    # The last step failing leaves the most behind: a complete temporary file.
+    monkeypatch.setattr(os, "replace", full_disk)
+    with pytest.raises(OSError, match="No space left"):
+        write_repro(destination, original, pair, pinned_for(pair), HEADER)
+    assert destination.read_text() == "previous repro\n"
+    assert os.listdir(destination.parent) == [destination.name]
+
+
+def test_a_repro_that_cannot_be_made_writes_nothing(tmp_path: Path) -> None:
+    path = write(tmp_path / "project", VALID_PAIRS)
+    original = load_pairs_file(path)
+    pair = pair_named(original, "same")
+    path.write_text(VALID_PAIRS.replace("  same:", "  renamed:"))
+    destination = tmp_path / "artifacts" / "same.lasertest.yaml"
+    with pytest.raises(SpecError):
+        write_repro(destination, original, pair, pinned_for(pair), HEADER)
+    assert not destination.parent.exists()
+
+
+def test_a_scanner_read_from_a_description_is_pinned_as_the_profile_it_read(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / "robot.urdf").write_text(ROBOT)
+    pairs = tmp_path / "gate.lasertest.yaml"
+    pairs.write_text(PAIRS)
+    commit_everything(tmp_path)
+    (tmp_path / "robot.urdf").write_text(
+        ROBOT.replace("<samples>32</samples>", "<samples>16</samples>")
+    )
+    original = load_pairs_file(pairs)
+    pair = pair_named(original, "swap")
+    destination = tmp_path / "elsewhere" / "swap.lasertest.yaml"
+    text = repro_yaml(original, pair, pinned_for(pair), destination, ())
+    assert text.startswith("# baseline: front in robot.urdf at HEAD (")
+    assert "urdf" not in yaml.safe_load(text)["pairs"]["swap"]["candidate"]
+    # The description moves on; the repro keeps what was read.
+    (tmp_path / "robot.urdf").unlink()
+    destination.parent.mkdir()
+    destination.write_text(text)
+    replayed = pair_named(load_pairs_file(destination), "swap")
+    assert replayed.baseline.profile == pair.baseline.profile
+    assert replayed.candidate.profile == pair.candidate.profile
+    assert replayed.candidate.profile.samples == 16

@@ -1,0 +1,90 @@
+"""examples/ci: the GitHub Actions workflow, and the gate it runs on a robot description. An
+unrelated edit to the description collects no items and passes; a laser edit is judged."""
+
+from __future__ import annotations
+
+import shlex
+import shutil
+from pathlib import Path
+from typing import Any
+
+import pytest
+import yaml
+
+from tests.helpers import EXAMPLES
+from tests.helpers.git import commit_everything
+
+WORKFLOW = EXAMPLES / "ci" / "lasertest.yml"
+
+
+def workflow() -> dict[Any, Any]:
+    loaded: dict[Any, Any] = yaml.safe_load(WORKFLOW.read_text())
+    return loaded
+
+
+def gate_command(pairs: str) -> list[str]:
+    """The workflow's pytest command, as its shell would run it, on `pairs` (minus `pytest`)."""
+    (job,) = workflow()["jobs"].values()
+    (step,) = [step for step in job["steps"] if step.get("name") == "Run the gate"]
+    command = (
+        step["run"]
+        .replace('"$PAIRS"', pairs)
+        .replace("${{ github.event.pull_request.number }}", "7")
+    )
+    words = shlex.split(command)
+    assert words[0] == "pytest"
+    return words[1:]
+
+
+def test_the_workflow_runs_on_pull_requests_that_touch_a_description() -> None:
+    # PyYAML reads the key `on` as True.
+    paths = workflow()[True]["pull_request"]["paths"]
+    assert {"**/*.urdf*", "**/*.xacro", "**/*.sdf"} <= set(paths)
+
+
+def test_the_workflow_fetches_the_history_and_keeps_the_artifacts_and_junit_xml() -> None:
+    (job,) = workflow()["jobs"].values()
+    checkout, *_ = job["steps"]
+    assert checkout["with"]["fetch-depth"] == 0
+    (upload,) = [step for step in job["steps"] if "upload-artifact" in step.get("uses", "")]
+    assert upload["if"] == "always()"
+    command = gate_command("pairs.yaml")
+    (artifacts,) = [word for word in command if word.startswith("--laser-artifacts=")]
+    (junit,) = [word for word in command if word.startswith("--junitxml=")]
+    assert upload["with"]["path"].rstrip("/") == artifacts.partition("=")[2]
+    assert junit.partition("=")[2].startswith(artifacts.partition("=")[2] + "/")
+
+
+@pytest.fixture
+def checkout(pytester: pytest.Pytester) -> Path:
+    """A repository whose last commit holds examples/ci, as a pull request's checkout would."""
+    shutil.copytree(EXAMPLES / "ci", pytester.path / "ci")
+    commit_everything(pytester.path)
+    return pytester.path / "ci"
+
+
+def test_an_edit_that_changes_no_laser_field_collects_no_items_and_passes(
+    pytester: pytest.Pytester, checkout: Path
+) -> None:
+    robot = checkout / "robot" / "robot.urdf.xacro"
+    robot.write_text(robot.read_text().replace("</robot>", "  <link name='camera'/>\n</robot>"))
+    result = pytester.runpytest_subprocess(*gate_command("ci/gate.lasertest.yaml"))
+    assert result.ret == pytest.ExitCode.OK
+    result.stdout.fnmatch_lines(["ci/gate.lasertest.yaml::front_laser: no sensing change, *"])
+    assert "passed" not in result.parseoutcomes()
+
+
+def test_a_laser_edit_is_judged_and_leaves_junit_xml_and_evidence(
+    pytester: pytest.Pytester, checkout: Path
+) -> None:
+    robot = checkout / "robot" / "robot.urdf.xacro"
+    robot.write_text(robot.read_text().replace("<samples>720</samples>", "<samples>360</samples>"))
+    result = pytester.runpytest_subprocess(
+        *gate_command("ci/gate.lasertest.yaml"), "-m", "not placement"
+    )
+    assert result.ret == pytest.ExitCode.TESTS_FAILED
+    result.assert_outcomes(failed=1, passed=1)
+    result.stdout.fnmatch_lines(["*beam spacing: * (360 beams, was 720)"])
+    artifacts = pytester.path / "lasertest-artifacts"
+    assert "front_laser[coverage]" in (artifacts / "junit.xml").read_text()
+    assert (artifacts / "ci" / "gate.lasertest.yaml" / "front_laser_coverage.json").is_file()

@@ -1,0 +1,117 @@
+"""The bundled examples: the paper's downgrades fail on the attribute each one changed, and with
+the Husky's move_base the paper's findings reappear: the 5 m robot's phantom arc, and the thin
+pole the 16-beam robot drives into and the 32-beam robot stops short of; and the team's gap
+follower under examples/own_controller takes its robots to the goal."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+from tests.helpers import EXAMPLES
+from tests.helpers.git import commit_everything
+from tests.helpers.runs import controllers
+
+
+def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
+    pytester: pytest.Pytester,
+) -> None:
+    shutil.copytree(EXAMPLES, pytester.path / "examples")
+    # A checkout: the CI gate example reads its description at HEAD.
+    commit_everything(pytester.path)
+    # As CI runs the README's main job: the ci profile, on two workers.
+    result = pytester.runpytest_subprocess(
+        "examples", "-rA", "--laser-seed=1", "--laser-profile=ci", "-n", "2"
+    )
+    assert "errors" not in result.parseoutcomes()
+    result.stdout.fnmatch_lines(
+        ["examples/ci/gate.lasertest.yaml::front_laser: no sensing change, no items: *"]
+    )
+    failed = {line.split()[1] for line in result.stdout.lines if line.startswith("FAILED ")}
+    assert {item for item in failed if not item.endswith("[coverage]")} == {
+        # The paper's distance finding: the 5 m scanner's no-return readings become a phantom
+        # arc 5 m ahead (range_max - 1e-4 < obstacle_range 5.5), and the robot never gets past.
+        "examples/paper.lasertest.yaml::distance[no-obstacle]",
+        # The paper's size finding: the 16-beam robot drives into the thin pole; the 32-beam
+        # robot stops short of it and stays stuck.
+        "examples/paper.lasertest.yaml::size[candidate-misses-1]",
+        # A 5 cm box beside the route stops both robots: their plan, made once at the start,
+        # runs past it too close to follow, and the Husky's move_base never plans again.
+        "examples/paper.lasertest.yaml::size[baseline-misses-2]",
+        # Found by the search (under this seed and most others): both robots pass the witness,
+        # a 5 cm box, and moved a few centimetres along the route the 16-beam robot drives
+        # into it while the 32-beam robot passes.
+        "examples/paper.lasertest.yaml::size[candidate-misses-2]",
+        # Boxes and a pole 0.460 m high on the last leg: below the TiM571's raised scan plane
+        # (0.540 m), so the candidate drives into each; the LMS111 reads them and passes.
+        *(
+            f"examples/husky.lasertest.yaml::lms111_to_tim571_raised[candidate-misses-{index}]"
+            for index in range(3)
+        ),
+    }
+    passed = {line.split()[1] for line in result.stdout.lines if line.startswith("PASSED ")}
+    assert passed >= {
+        "examples/husky.lasertest.yaml::ust10_to_ust20[coverage]",
+        # The team's own controller takes both robots to the goal in the empty world.
+        "examples/own_controller/gap_follower.lasertest.yaml::size[no-obstacle]",
+        "examples/paper.lasertest.yaml::blind_spot[no-obstacle]",
+        "examples/paper.lasertest.yaml::size[no-obstacle]",
+        "examples/paper.lasertest.yaml::size[candidate-misses-0]",
+        "examples/paper.lasertest.yaml::size[baseline-misses-0]",
+    }
+    result.stdout.fnmatch_lines(
+        [
+            "*_ distance[[]no-obstacle[]] _*",
+            "  baseline   clearpath_lms1xx_gazebo: passed: *; goal reached at t = * s",
+            "  candidate  clearpath_lms1xx_gazebo: FAILED: *; stuck at t = * s: *",
+        ]
+    )
+    result.stdout.fnmatch_lines(
+        [
+            "*_ size[[]candidate-misses-1[]] _*",
+            "the candidate fails (collision and goal) near witness candidate-misses-1: "
+            "pre-existing: *",
+            "  controller move_base (the default)",
+            "  oracle     collision: collided at t = * s *",
+            "  witness    cylinder of radius 0.025 m at *",
+            "  minimal    cylinder of radius 0.025 m at *",
+            "  baseline   clearpath_lms1xx_gazebo: FAILED: no collision, *; stuck at t = * s: *",
+            "  candidate  clearpath_lms1xx_gazebo: FAILED: collided at t = * s; *",
+        ]
+    )
+    output = result.stdout.str()
+    for pair, loss in [
+        ("blind_spot", "    field of view: 3.14 -> 2 rad; no longer scans [-1.570, -1.000] rad"),
+        (
+            "distance",
+            "    range.max: 10 -> 5 m; obstacles between 5.00 and 10.00 m are no longer seen",
+        ),
+        (
+            "size",
+            "    beam spacing: 0.10129 -> 0.209333 rad; a 0.051 m wide obstacle is sure to be",
+        ),
+        ("lms111_to_tim571_raised", "    update_rate: 50 -> 15 Hz; a scan every 66.7 ms"),
+        ("lms111_to_tim571_raised", "    scan height: 0.44023 -> 0.54023 m; scan plane raised"),
+    ]:
+        section = output.split(f" {pair}[coverage] ")[1]
+        assert loss in section.split("  other changes:")[0].split("  replay")[0]
+
+
+def test_the_own_controller_example_drives_its_robots_with_the_gap_follower_to_the_goal(
+    pytester: pytest.Pytester,
+) -> None:
+    shutil.copytree(EXAMPLES / "own_controller", pytester.path / "own_controller")
+    result = pytester.runpytest("own_controller", "-rA", "--laser-seed=1", "--junitxml=out.xml")
+    # The 16-beam scanner loses coverage; with the gap follower, both robots reach the goal in
+    # the empty world and past both witnesses.
+    result.assert_outcomes(passed=3, failed=1)
+    result.stdout.fnmatch_lines(
+        [
+            "PASSED own_controller/gap_follower.lasertest.yaml::size[[]no-obstacle[]]",
+            "PASSED own_controller/gap_follower.lasertest.yaml::size[[]candidate-misses-0[]]",
+            "PASSED own_controller/gap_follower.lasertest.yaml::size[[]baseline-misses-0[]]",
+            "FAILED own_controller/gap_follower.lasertest.yaml::size[[]coverage[]]*",
+        ]
+    )
+    assert set(controllers(pytester).values()) == {"gap_follower:make_controller"}

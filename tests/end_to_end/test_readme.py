@@ -1,0 +1,30 @@
+"""The README's promises: its annotated pairs file is valid, its quickstart is two commands."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from pytest_lasertest.pairsfile import load_pairs_file
+from tests.helpers import REPO
+
+README = (REPO / "README.md").read_text()
+
+
+def test_the_annotated_pairs_file_in_the_readme_loads(tmp_path: Path) -> None:
+    annotated = re.search(r"```yaml\n(.*?)```", README, re.DOTALL)
+    assert annotated is not None
+    path = tmp_path / "annotated.lasertest.yaml"
+    path.write_text(annotated.group(1))
+    spec = load_pairs_file(path)
+    assert [pair.name for pair in spec.pairs] == ["blind_spot"]
+    assert spec.pairs[0].candidate.model == "clearpath_lms1xx_gazebo"
+
+
+def test_the_quickstart_is_one_command_for_the_main_job_and_one_for_the_tests() -> None:
+    quickstart = README.split("## Quickstart")[1].split("\n## ")[0]
+    commands = re.findall(r"```bash\n(.*?)\n```", quickstart, re.DOTALL)
+    assert len(commands) == 2
+    assert commands[0].endswith("pytest examples/")
+    assert commands[1].endswith("pytest tests/")
+    assert all("\n" not in command for command in commands)

@@ -1,0 +1,66 @@
+"""The control item of a pair, `PAIR[no-obstacle]`: both robots through the empty world. A
+candidate that fails there fails it, and only it; a failure writes its artifacts; a run that
+drives leaves no physics client connected."""
+
+from __future__ import annotations
+
+import json
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+from pytest_lasertest.sim.client import connected_clients
+from tests.helpers.runs import ARTIFACTS
+from tests.helpers.texts import SIZE_PAIR
+
+
+def test_a_candidate_that_fails_in_the_empty_world_fails_the_control_item_and_only_that(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    # 2 s cannot take either robot 6 m: the failure is everywhere, not at any placement.
+    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 2.0"))
+    result = pytester.runpytest("-k", "size", "-rs", "--laser-seed=1")
+    result.assert_outcomes(failed=2, skipped=2)
+    result.stdout.fnmatch_lines(
+        [
+            "the candidate fails without any obstacle: the change breaks the robot everywhere*",
+            "  candidate  clearpath_lms1xx_gazebo: FAILED: *goal not reached: * m away at best",
+            "SKIPPED [[]2[]] gate.lasertest.yaml:10: the candidate already fails without any "
+            "obstacle: see size[[]no-obstacle[]]",
+        ]
+    )
+
+
+def test_a_run_that_drives_leaves_no_physics_client_connected(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 2.0"))
+    result = pytester.runpytest("-k", "size and no-obstacle")
+    result.assert_outcomes(failed=1)
+    assert connected_clients() == 0
+
+
+def test_under_the_regression_policy_a_failure_the_baseline_shares_passes(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 2.0"))
+    result = pytester.runpytest("-k", "size and no-obstacle", "--laser-policy=regression")
+    result.assert_outcomes(passed=1)
+
+
+def test_a_control_item_that_fails_writes_its_picture_world_and_numbers(
+    pytester: pytest.Pytester, paper: Path
+) -> None:
+    result = pytester.runpytest(
+        "-k", "distance and no-obstacle", "--laser-seed=1", "--laser-artifacts=out"
+    )
+    result.assert_outcomes(failed=1)
+    stem = ARTIFACTS / "distance_no-obstacle"
+    result.stdout.fnmatch_lines([f"  artifact   {stem}.png", f"  artifact   {stem}.world"])
+    assert Path(f"{stem}.png").read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
+    world = ET.parse(f"{stem}.world").getroot()
+    assert [model.get("name") for model in world.iter("model")] == ["ground_plane"]
+    evidence = json.loads(Path(f"{stem}.json").read_text())
+    assert evidence["candidate"]["verdicts"]["stuck"]["passed"] is False
+    assert evidence["baseline"]["passed"] is True

@@ -1,0 +1,99 @@
+"""The run's summaries: the placement items' table, the same under xdist as serially, and the
+pairs whose scanners read alike, which collect to no items and get one line each."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from tests.helpers.git import git
+from tests.helpers.runs import junit_cases
+from tests.helpers.texts import PAIRS, ROBOT
+
+
+def test_items_run_and_sum_up_the_same_under_xdist_as_serially(
+    pytester: pytest.Pytester, paper: Path
+) -> None:
+    selection = ("-k", "size", "--laser-seed=1", "--laser-profile=ci")
+    serial = pytester.runpytest(*selection, "--junitxml=serial.xml")
+    # Each run starts from an empty example database, or the second would replay the first's
+    # failures and try fewer examples.
+    shutil.rmtree(pytester.path / ".hypothesis")
+    distributed = pytester.runpytest_subprocess(*selection, "--junitxml=xdist.xml", "-n", "2")
+    assert junit_cases(pytester.path / "serial.xml") == junit_cases(pytester.path / "xdist.xml")
+    assert summary(serial.stdout.lines) == summary(distributed.stdout.lines)
+    assert summary(serial.stdout.lines)[1].split() == [
+        # witnesses, examples, rejected, failed, by oracle, regressions, pre-existing
+        *("paper.lasertest.yaml::size", "6", "55", "0", "(0%)", "3", "2", "1", "3", "1", "2"),
+    ]
+    assert {
+        name: case.outcome for name, case in junit_cases(pytester.path / "serial.xml").items()
+    } == {
+        "paper.lasertest.yaml::size[coverage]": "failure",
+        "paper.lasertest.yaml::size[no-obstacle]": "passed",
+        **{f"paper.lasertest.yaml::size[baseline-misses-{index}]": "passed" for index in range(2)},
+        "paper.lasertest.yaml::size[baseline-misses-2]": "failure",
+        "paper.lasertest.yaml::size[candidate-misses-0]": "passed",
+        "paper.lasertest.yaml::size[candidate-misses-1]": "failure",
+        # Found by perturbing the witness, which both robots pass: see the next test.
+        "paper.lasertest.yaml::size[candidate-misses-2]": "failure",
+    }
+
+
+def summary(lines: list[str]) -> list[str]:
+    """The lasertest summary table of a run's output."""
+    start = next(index for index, line in enumerate(lines) if "lasertest: placements" in line)
+    table = []
+    for line in lines[start + 1 :]:
+        if line.startswith(("=", "FAILED", "ERROR")):
+            break
+        table.append(line)
+    return table
+
+
+def test_a_pair_whose_scanners_read_alike_yields_no_items_and_one_summary_line(
+    pytester: pytest.Pytester, repository: Path
+) -> None:
+    # An edit that changes nothing the laser reads: a comment and a new link.
+    edited = ROBOT.replace(
+        "</robot>", "  <!-- a camera, soon -->\n  <link name='camera'/>\n</robot>"
+    )
+    (repository / "robot.urdf").write_text(edited)
+    result = pytester.runpytest("--laser-seed=1")
+    assert result.ret == pytest.ExitCode.OK
+    result.assert_outcomes()
+    result.stdout.fnmatch_lines(
+        [
+            "*= lasertest: pairs whose scanners read alike =*",
+            "gate.lasertest.yaml::swap: no sensing change, no items: baseline front in "
+            "robot.urdf at HEAD (*) and candidate front in robot.urdf both read 32 beams *",
+        ]
+    )
+
+
+def test_no_sensing_change_is_summed_up_alike_on_pytest_xdist_workers(
+    pytester: pytest.Pytester, repository: Path
+) -> None:
+    result = pytester.runpytest_subprocess("-n", "2", "--laser-seed=1")
+    assert result.ret == pytest.ExitCode.OK
+    summary = [line for line in result.stdout.lines if "no sensing change" in line]
+    assert summary == [
+        "gate.lasertest.yaml::swap: no sensing change, no items: baseline front in robot.urdf "
+        f"at HEAD ({git(repository, 'rev-parse', '--short=7', 'HEAD')}) and candidate front in "
+        "robot.urdf both read 32 beams over [-1.570, 1.570] rad, range 0.10-10.00 m, 20 Hz, "
+        "scan plane 0.300 m"
+    ]
+
+
+def test_a_changed_pair_beside_an_unchanged_one_runs_and_the_run_fails_as_usual(
+    pytester: pytest.Pytester, repository: Path
+) -> None:
+    (repository / "gate.lasertest.yaml").write_text(
+        PAIRS + "  narrower:\n    baseline: {urdf: robot.urdf}\n"
+        "    candidate: {urdf: robot.urdf, max_angle: 1.0}\n"
+    )
+    result = pytester.runpytest("-k", "coverage", "--laser-seed=1")
+    result.assert_outcomes(failed=1)
+    result.stdout.fnmatch_lines(["*narrower[[]coverage[]]*", "*swap: no sensing change*"])

@@ -1,0 +1,68 @@
+"""The run's summary table: each pair's placement items summed up, and where the artifacts are."""
+
+from __future__ import annotations
+
+from pytest_lasertest.reports.summary import Summary
+
+
+def searched(examples: int, rejected: int, **failure: object) -> list[tuple[str, object]]:
+    rows: list[tuple[str, object]] = [
+        ("lasertest.examples", examples),
+        ("lasertest.rejected", rejected),
+    ]
+    return rows + [(f"lasertest.{key}", value) for key, value in failure.items()]
+
+
+def test_the_summary_sums_each_pairs_placement_items_and_ignores_other_items() -> None:
+    summary = Summary()
+    summary.add("paper.lasertest.yaml::size[coverage]", True, [("lasertest.coverage_losses", 1)])
+    summary.add("paper.lasertest.yaml::size[no-obstacle]", False, [])
+    summary.add("paper.lasertest.yaml::size[candidate-misses-0]", False, searched(8, 1))
+    summary.add(
+        "paper.lasertest.yaml::size[candidate-misses-1]",
+        True,
+        searched(3, 0, failed_oracles="collision,goal", regressions=1),
+    )
+    summary.add(
+        "paper.lasertest.yaml::size[baseline-misses-0]",
+        True,
+        searched(1, 0, failed_oracles="stuck,goal", pre_existing=1),
+    )
+    # Under the regression policy a pre-existing failure passes, and is still counted.
+    summary.add(
+        "paper.lasertest.yaml::size[baseline-misses-1]", False, searched(4, 0, pre_existing=2)
+    )
+    summary.add("husky.lasertest.yaml::ust[baseline-misses-0]", False, searched(8, 0))
+    header, husky, size = (line.split() for line in summary.lines(artifacts=None))
+    assert header[0] == "pair"
+    assert husky == [
+        "husky.lasertest.yaml::ust",
+        "1",
+        "8",
+        "0",
+        "(0%)",
+        "0",
+        "0",
+        "0",
+        "0",
+        "0",
+        "0",
+    ]
+    assert size == [
+        *("paper.lasertest.yaml::size", "4", "16", "1", "(6%)", "2"),
+        *("1", "1", "2", "1", "2"),
+    ]
+
+
+def test_the_summary_says_where_the_artifacts_of_failing_items_are() -> None:
+    summary = Summary()
+    summary.add("a.lasertest.yaml::p[candidate-misses-0]", True, searched(1, 0))
+    assert summary.lines("lasertest-artifacts")[-1] == (
+        "artifacts of the 1 failing placement items: lasertest-artifacts"
+    )
+
+
+def test_a_run_without_placement_items_has_no_summary() -> None:
+    summary = Summary()
+    summary.add("a.lasertest.yaml::p[coverage]", True, [])
+    assert summary.lines("out") == []

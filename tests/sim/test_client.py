@@ -1,0 +1,65 @@
+"""The PyBullet world: static obstacles the robot cannot push, the clearance it measures, and
+clients and memory released."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from pytest_lasertest.model.geometry import Pose2D
+from pytest_lasertest.model.obstacles import Box, Cylinder
+from pytest_lasertest.sim.client import PhysicsWorld, connected_clients
+from tests.helpers.sim import TIME_STEP
+
+
+def test_obstacles_are_static_the_robot_cannot_push_them() -> None:
+    box = Box(1.5, 0.0, 0.0, 0.3, 1.0, 0.5)
+    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (box,), TIME_STEP) as world:
+        touched = 0
+        for _ in range(300):
+            world.step(8.0, 8.0)
+            touched += world.proximity(world.base_pose(), within=1.0)[1]
+        reached = world.base_pose()
+        clearance, touching = world.proximity(reached, within=1.0)
+    assert touched > 0
+    assert touching
+    assert clearance < 0.001
+    # Pushing with all its torque for 3 s, the Husky's bumper (0.505 m ahead of its base, give
+    # or take the pitch it pushes with) is still at the box's near face.
+    assert reached[0] + 0.505 == pytest.approx(box.x - box.length / 2, abs=0.02)
+
+
+def _resident_bytes() -> int:
+    return int(Path("/proc/self/statm").read_text().split()[1]) * 4096
+
+
+def _worlds(count: int) -> PhysicsWorld:
+    obstacles = (Box(2.0, 0.0, 0.3, 0.2, 0.2, 1.0), Cylinder(3.0, 1.0, 0.1, 1.0))
+    for _ in range(count):
+        with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), obstacles, TIME_STEP) as world:
+            world.step(1.0, 1.0)
+    return world
+
+
+def test_worlds_release_their_clients_and_memory() -> None:
+    # PyBullet keeps what it read of the Husky's files after the first worlds (about 35 MB).
+    _worlds(100)
+    before = _resident_bytes()
+
+    last = _worlds(200)
+
+    assert last.closed
+    assert connected_clients() == 0
+    assert _resident_bytes() - before < 10 * 2**20
+
+
+def test_proximity_is_the_clearance_pybullet_measures_capped_at_the_horizon() -> None:
+    near, far = Box(1.2, 0.0, 0.0, 0.2, 0.2, 1.0), Cylinder(9.0, 0.0, 0.1, 1.0)
+    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (near, far), TIME_STEP) as world:
+        clearance, touching = world.proximity(world.base_pose(), within=1.0)
+        capped, _ = world.proximity(world.base_pose(), within=0.5)
+    # The Husky's collision box reaches 0.504 m ahead of base_footprint; the box starts at 1.1.
+    assert clearance == pytest.approx(1.1 - 0.504, abs=0.01)
+    assert not touching
+    assert capped == 0.5
