@@ -10,6 +10,8 @@ from typing import Literal
 from pytest_lasertest.model.verify import Direction, Placement, Scene, Verification
 
 Status = Literal["sat", "unsat", "unknown"]
+# The name of a placement both scanners read, which the robot must steer round.
+AVOID = "avoid"
 
 
 @dataclass(frozen=True)
@@ -23,8 +25,9 @@ class Witness:
 
     @property
     def id(self) -> str:
-        """`candidate-misses-0`: the direction and the index, as in the item's name."""
-        return f"{self.placement.direction}-{self.index}"
+        """`candidate-misses-0`, or `avoid-0` for one both scanners read: the direction and the
+        index, as in the item's name."""
+        return f"{self.placement.direction or AVOID}-{self.index}"
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,4 @@
-"""Placements, and their exact verification by ray casting: the judge every solver witness faces.
+"""Placements, and their exact verification by ray casting: the judge every witness faces.
 
 A placement discriminates a pair in one direction when, with every margin at least `margin`:
 - the detector's scan at the anchor instant has a beam that passes inside the obstacle, in range,
@@ -12,10 +12,14 @@ A placement discriminates a pair in one direction when, with every margin at lea
 The lead is how far the robot drives between the anchor and `until`; a placement is late when
 `until` reaches the robot's last chance to stop, so that the misser reads the obstacle only when it
 is too late, or never: it stays discriminating along the whole approach.
+
+A placement without a direction is one both scanners read at the anchor, which the robot must
+steer round (`avoid.py`): it is judged on the same margins, and no scanner conceals it.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Literal
 
@@ -44,6 +48,7 @@ ROLES: dict[Direction, tuple[Scanner, Scanner]] = {
 DETECTED_BY: dict[Direction, Scanner] = {
     direction: detector for direction, (detector, _) in ROLES.items()
 }
+BOTH: tuple[Scanner, Scanner] = ("baseline", "candidate")
 # PyBullet reports ray hits up to about 1 mm outside exact shapes: keep well clear of every edge.
 REQUIRED_MARGIN = 0.005  # m
 # Beams further than this from the obstacle get a lower bound on their clearance, not its exact
@@ -84,9 +89,25 @@ class Placement:
     """An obstacle, the direction it discriminates, and the detector's scan that first sees it."""
 
     obstacle: Obstacle
-    direction: Direction
+    direction: Direction | None  # None: both scanners read it (see the module)
     anchor: float  # s, a scan instant of the detector on the nominal path
     until: float  # s, no earlier than the anchor: the misser misses every scan up to here
+
+    @property
+    def readers(self) -> tuple[Scanner, ...]:
+        """The scanners that must read the obstacle at the anchor."""
+        if self.direction is None:
+            return BOTH
+        return (DETECTED_BY[self.direction],)
+
+    @property
+    def scanners(self) -> tuple[Scanner, ...]:
+        """Both scanners, in the order reports show them: the detector first."""
+        return BOTH if self.direction is None else ROLES[self.direction]
+
+    def read_by(self) -> str:
+        """`baseline`, `candidate`, or `baseline and candidate`: who reads it at the anchor."""
+        return " and ".join(self.readers)
 
 
 @dataclass(frozen=True)
@@ -94,7 +115,7 @@ class Verification:
     """The margins of a placement; each must reach REQUIRED_MARGIN."""
 
     detection: float  # m, how deep the detector's best beam passes inside, or its height margin
-    concealment: float  # m, how far clear the misser's nearest beam stays, up to the anchor
+    concealment: float  # m, how far clear the misser's nearest beam stays; inf without a misser
     clearance: float  # m, between the obstacle and the robot until it stands, and at the goal
     obstruction: float  # m, how deep the obstacle reaches into the footprint swept after
     seen_by_misser_at: tuple[float, ...]  # s, misser scans up to `until` that fail to miss
@@ -115,26 +136,40 @@ def verify(scene: Scene, placement: Placement, last: float | None = None) -> Ver
     """Judge a placement with exact ray casts and swept footprints; `last` is the obstacle's
     `last_chance`, if the caller knows it already."""
     obstacle, direction = placement.obstacle, placement.direction
-    misser = scene.misser(direction)
     anchor_pose = scene.path.poses_at(np.array([placement.anchor]))
-    detection = float(np.max(hit_margins(scene.detector(direction), anchor_pose, obstacle)))
+    detection = min(
+        float(np.max(hit_margins(getattr(scene, reader), anchor_pose, obstacle)))
+        for reader in placement.readers
+    )
+    clearance, obstruction = _in_the_way(scene, obstacle, placement.anchor)
+    if direction is None:
+        return Verification(detection, math.inf, clearance, obstruction, (), 0.0, False)
+    misser = scene.misser(direction)
     times = scan_times(misser.update_rate, max(placement.until, placement.anchor))
     concealments = miss_margins(misser, scene.path.poses_at(times), obstacle)
-    stands = scene.standstill(placement.anchor)
-    after = swept_polygons(scene.path, scene.robot.footprint_array(), stands, scene.path.duration)
     last = last_chance(scene, obstacle) if last is None else last
     return Verification(
         detection=detection,
         concealment=float(np.min(concealments)),
-        clearance=min(
-            stopping_clearance(scene, obstacle, placement.anchor),
-            polygon_clearance(scene.arrival(), obstacle),
-        ),
-        obstruction=max((-polygon_clearance(piece, obstacle) for piece in after), default=-np.inf),
+        clearance=clearance,
+        obstruction=obstruction,
         seen_by_misser_at=tuple(float(t) for t in times[concealments < REQUIRED_MARGIN]),
         lead=scene.path.travelled(placement.until) - scene.path.travelled(placement.anchor),
         late=len(scan_times(misser.update_rate, last)) <= len(times),
     )
+
+
+def _in_the_way(scene: Scene, obstacle: Obstacle, anchor: float) -> tuple[float, float]:
+    """How far the robot braking from `anchor` (and at the goal) stays clear of the obstacle, and
+    how deep the obstacle reaches into the footprint swept after it would stand (m)."""
+    clearance = min(
+        stopping_clearance(scene, obstacle, anchor),
+        polygon_clearance(scene.arrival(), obstacle),
+    )
+    stands = scene.standstill(anchor)
+    after = swept_polygons(scene.path, scene.robot.footprint_array(), stands, scene.path.duration)
+    obstruction = max((-polygon_clearance(piece, obstacle) for piece in after), default=-np.inf)
+    return clearance, obstruction
 
 
 def stopping_clearance(scene: Scene, obstacle: Obstacle, time: float) -> float:

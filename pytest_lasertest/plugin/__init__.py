@@ -103,6 +103,11 @@ def pytest_configure(config: pytest.Config) -> None:
     config.addinivalue_line(
         "markers", "pinned: a pytest-lasertest item driving both robots past a pinned obstacle"
     )
+    config.addinivalue_line(
+        "markers",
+        "avoid: a pytest-lasertest placement item searching around an obstacle both scanners "
+        "read, which the robot must steer round",
+    )
     here = config.invocation_params.dir
     named = parse_pairs(config.getoption("laser_pairs"), here, "--laser-pairs")
     ini_paths: list[Path] = config.getini("laser_pairs")

@@ -20,7 +20,8 @@ from pytest_lasertest.plugin.options import LaserOptions, is_pairs_file
 from pytest_lasertest.reports.summary import Summary, Unchanged
 
 if TYPE_CHECKING:
-    from pytest_lasertest.model.plan import PairPlan
+    from pytest_lasertest.model.plan import PairPlan, Witness
+    from pytest_lasertest.model.verify import Scene
     from pytest_lasertest.pairsfile import Pair, PairsFile
     from pytest_lasertest.pairsfile.controller import ControllerChoice
     from pytest_lasertest.search.drives import PairDrive, RunCache
@@ -48,7 +49,9 @@ class LaserSession:
         self.unchanged = Unchanged()
         # Keyed by (pairs file path, pair name): every item of a pairs file drives with the
         # same controller, so the file and the pair name a plan and a control drive.
+        self._scenes: dict[tuple[Path, str], Scene] = {}
         self._plans: dict[tuple[Path, str], PairPlan] = {}
+        self._avoid: dict[tuple[Path, str], tuple[Witness, ...]] = {}
         self._controls: dict[tuple[Path, str], PairDrive] = {}
         self._client: PhysicsClient | None = None
         self._cache: RunCache | None = None
@@ -92,16 +95,41 @@ class LaserSession:
             )
         return self._controls[key]
 
-    def plan(self, spec: PairsFile, pair: Pair, controller: ControllerChoice) -> PairPlan:
-        """The pair's witnesses, planned once per process along the path its baseline drove;
-        planning is deterministic, so workers that plan the same pair find the same."""
+    def scene(self, spec: PairsFile, pair: Pair, controller: ControllerChoice) -> Scene:
+        """The pair's scanners on its robot, along the path its baseline drove without an
+        obstacle: what its witnesses are placed in and judged against."""
         key = (spec.path, pair.name)
-        if key not in self._plans:
-            from pytest_lasertest.search.plans import plan_for
+        if key not in self._scenes:
+            from pytest_lasertest.search.plans import pair_scene
 
             control = self.control_drive(spec, pair, controller)
-            self._plans[key] = plan_for(spec, pair, control.baseline)
+            self._scenes[key] = pair_scene(spec, pair, control.baseline)
+        return self._scenes[key]
+
+    def plan(self, spec: PairsFile, pair: Pair, controller: ControllerChoice) -> PairPlan:
+        """The pair's witnesses, planned once per process; planning is deterministic, so workers
+        that plan the same pair find the same."""
+        key = (spec.path, pair.name)
+        if key not in self._plans:
+            from pytest_lasertest.search.plans import plan_scene
+
+            self._plans[key] = plan_scene(spec, pair, self.scene(spec, pair, controller))
         return self._plans[key]
+
+    def avoid(
+        self, spec: PairsFile, pair: Pair, controller: ControllerChoice
+    ) -> tuple[Witness, ...]:
+        """The placements the pair's robots must steer round and the baseline robot passes, as
+        many as the pairs file asks witnesses per direction, found once per process."""
+        key = (spec.path, pair.name)
+        if key not in self._avoid:
+            from pytest_lasertest.search.plans import avoid_for
+            from pytest_lasertest.search.witness import passed_by_baseline
+
+            found = avoid_for(spec, self.scene(spec, pair, controller))
+            setting = self.setting(spec, pair, controller)
+            self._avoid[key] = passed_by_baseline(setting, found, spec.settings.witnesses)
+        return self._avoid[key]
 
     def setting(self, spec: PairsFile, pair: Pair, controller: ControllerChoice) -> Setting:
         """Where the pair's trials drive: its controller, the run's seed, this process's

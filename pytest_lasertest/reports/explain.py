@@ -54,9 +54,15 @@ class ScanExplanation:
 
 
 def explain_scans(scene: Scene, witness: Witness) -> tuple[ScanExplanation, ...]:
-    """The detector and the misser at the anchor, then the misser's last scan up to `until`."""
+    """The detector and the misser at the anchor, then the misser's last scan up to `until`;
+    both scanners at the anchor for a placement both read."""
     placement = witness.placement
     direction = placement.direction
+    if direction is None:
+        return tuple(
+            explain_scan(scene, witness, reader, "detector", placement.anchor)
+            for reader in placement.readers
+        )
     misser = scene.misser(direction)
     detector_name, misser_name = ROLES[direction]
     until = scan_times(misser.update_rate, max(placement.until, placement.anchor))[-1]

@@ -10,6 +10,7 @@ controller, where the run's summary is made from them.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -20,9 +21,7 @@ from pytest_lasertest.model.obstacles import Obstacle
 from pytest_lasertest.model.plan import Witness
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.model.verify import (
-    DETECTED_BY,
     REQUIRED_MARGIN,
-    ROLES,
     Scene,
     Verification,
     hit_margins,
@@ -122,7 +121,7 @@ def rejection_report(
         f"  baseline   {pair.baseline.label}: {pair.baseline.profile.describe()}",
         f"  candidate  {pair.candidate.label}: {pair.candidate.profile.describe()}",
         f"  obstacle   {placement.obstacle.describe()}",
-        f"  read by    the {DETECTED_BY[placement.direction]} at t = "
+        f"  read by    the {placement.read_by()} at t = "
         f"{placement.anchor:.2f} s, robot at {pose_text(*witness.pose)}",
         f"  margins    {margins_text(verification)}; each must reach "
         f"{REQUIRED_MARGIN * 1000:.1f} mm",
@@ -149,7 +148,7 @@ def beam_lines(scene: Scene, result: TrialResult) -> list[str]:
     placement = result.placement
     pose = scene.path.poses_at(np.array([placement.anchor]))[0]
     lines = [f"  beams      at t = {placement.anchor:.2f} s, robot at {pose_text(*pose.tolist())}:"]
-    for side in ROLES[placement.direction]:
+    for side in placement.scanners:
         profile = getattr(scene, side)
         reading = beam_reading(profile, pose, placement.obstacle)
         lines.append(f"    {side:<9} {reading.describe()}")
@@ -164,7 +163,10 @@ def margins_text(verification: Verification) -> str:
         "clearance": verification.clearance,
         "obstruction": verification.obstruction,
     }
-    return ", ".join(f"{name} {value * 1000:.1f} mm" for name, value in parts.items())
+    # A placement both scanners read has no misser to conceal it: its concealment is infinite.
+    return ", ".join(
+        f"{name} {value * 1000:.1f} mm" for name, value in parts.items() if value != math.inf
+    )
 
 
 def oracle_lines(result: TrialResult) -> list[str]:
@@ -198,7 +200,7 @@ def witness_properties(witness: Witness, verification: Verification) -> list[tup
         ("lasertest.margin", verification.margin),
         ("lasertest.lead", verification.lead),
         ("lasertest.late", verification.late),
-        ("lasertest.detected_by", DETECTED_BY[witness.placement.direction]),
+        ("lasertest.detected_by", witness.placement.read_by()),
     ]
 
 

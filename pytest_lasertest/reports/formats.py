@@ -13,7 +13,6 @@ from dataclasses import dataclass
 from pytest_lasertest.model.obstacles import Box, Obstacle
 from pytest_lasertest.model.plan import Witness
 from pytest_lasertest.model.sensor import LaserProfile
-from pytest_lasertest.model.verify import DETECTED_BY
 from pytest_lasertest.sim.scenario import Run
 
 
@@ -50,7 +49,7 @@ def witness_json(witness: Witness) -> dict[str, object]:
         "direction": witness.placement.direction,
         "obstacle": obstacle_json(witness.placement.obstacle),
         "pose": list(witness.pose),
-        "detected_by": DETECTED_BY[witness.placement.direction],
+        "detected_by": witness.placement.read_by(),
         "margin": witness.verification.margin,
         "lead": witness.verification.lead,
         "late": witness.verification.late,

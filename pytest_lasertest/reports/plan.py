@@ -9,7 +9,7 @@ The JSON is a stable contract (documented in the README):
 from __future__ import annotations
 
 from pytest_lasertest.model.plan import PairPlan, Witness
-from pytest_lasertest.model.verify import DETECTED_BY, ROLES
+from pytest_lasertest.model.verify import DETECTED_BY, ROLES, Direction
 from pytest_lasertest.reports.formats import pose_text, profile_json, witness_json
 
 
@@ -40,17 +40,18 @@ def plan_text(plan: PairPlan) -> str:
                 f"    {witness.id}: {witness.placement.obstacle.describe()}; "
                 f"read by the {DETECTED_BY[direction.direction]} from {pose_text(*witness.pose)} "
                 f"at t = {witness.placement.anchor:.2f} s; "
-                f"margin {witness.verification.margin * 1000:.1f} mm; {_lead(witness)}"
+                f"margin {witness.verification.margin * 1000:.1f} mm; "
+                f"{_lead(witness, direction.direction)}"
             )
         if direction.explanation:
             lines.append(f"    {direction.explanation}")
     return "\n".join(lines)
 
 
-def _lead(witness: Witness) -> str:
+def _lead(witness: Witness, direction: Direction) -> str:
     """How long the difference lasts on the approach."""
     lead = witness.verification.lead
-    _, misser = ROLES[witness.placement.direction]
+    _, misser = ROLES[direction]
     if witness.verification.late:
         return f"the {misser} misses it for {lead:.2f} m, until too late to stop"
     return f"the {misser} misses it for {lead:.2f} m more"

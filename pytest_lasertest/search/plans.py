@@ -1,5 +1,6 @@
-"""A pair of a pairs file as the solver plans it: both scanners on the pairs file's robot, along
-its route, with its settings and constraints.
+"""A pair of a pairs file as the gate plans it: both scanners on the pairs file's robot, along
+its route, with its settings and constraints; the solver's witnesses, and the placements the
+robot must steer round.
 
 The path is the route's legs and turns, timed as the baseline robot drove them without an
 obstacle when that run is given (as the gate's items and `lasertest plan` do), else at the robot's
@@ -8,7 +9,8 @@ nominal speed and turn rate. The solver, and with it Z3, is imported on the firs
 
 from __future__ import annotations
 
-from pytest_lasertest.model.plan import PairPlan
+from pytest_lasertest.model.avoid import avoid_witnesses
+from pytest_lasertest.model.plan import PairPlan, Witness
 from pytest_lasertest.model.route import NominalPath, nominal_path, timed_to
 from pytest_lasertest.model.verify import Scene
 from pytest_lasertest.pairsfile import Pair, PairsFile
@@ -18,6 +20,11 @@ from pytest_lasertest.sim.scenario import Run
 def plan_for(spec: PairsFile, pair: Pair, control: Run | None = None) -> PairPlan:
     """Both directions of the pair, along the path `control` (the baseline's obstacle-free run)
     drove, or the nominal path without it."""
+    return plan_scene(spec, pair, pair_scene(spec, pair, control))
+
+
+def plan_scene(spec: PairsFile, pair: Pair, scene: Scene) -> PairPlan:
+    """Both directions of the pair in `scene`, with the pairs file's settings and constraints."""
     from pytest_lasertest.solver.plan import plan_pair
     from pytest_lasertest.solver.search import SearchSettings
 
@@ -27,7 +34,12 @@ def plan_for(spec: PairsFile, pair: Pair, control: Run | None = None) -> PairPla
         max_size=spec.settings.max_obstacle_size,
         constraints=spec.constraints,
     )
-    return plan_pair(pair.name, pair_scene(spec, pair, control), settings)
+    return plan_pair(pair.name, scene, settings)
+
+
+def avoid_for(spec: PairsFile, scene: Scene) -> tuple[Witness, ...]:
+    """The placements both scanners read that the robot must steer round (`model/avoid.py`)."""
+    return avoid_witnesses(scene, spec.settings.obstacle_sizes)
 
 
 def pair_scene(spec: PairsFile, pair: Pair, control: Run | None = None) -> Scene:

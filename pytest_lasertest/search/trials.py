@@ -20,7 +20,7 @@ from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.search.drives import RunCache, scenario
 from pytest_lasertest.search.offsets import Offset, Untested, discriminates, perturbed
 from pytest_lasertest.sim.client import PhysicsClient
-from pytest_lasertest.sim.scenario import Run
+from pytest_lasertest.sim.scenario import Run, Scenario
 
 NOT_DISCRIMINATING = "rejected: no longer discriminating"
 BUDGET_SPENT = "not simulated: the shrink budget is spent"
@@ -72,6 +72,14 @@ class Setting:
     seed: int
     client: PhysicsClient
     cache: RunCache
+
+    def scenario(self, profile: LaserProfile, placement: Placement) -> Scenario:
+        """One robot of the pair, carrying `profile`, past the placement's obstacle."""
+        return scenario(self.spec, profile, (placement.obstacle,), self.seed)
+
+    def drive(self, profile: LaserProfile, placement: Placement) -> Run:
+        """The run of `scenario`, through the session's cache."""
+        return self.cache.run(self.scenario(profile, placement), self.controller, self.client)
 
 
 @dataclass
@@ -152,12 +160,11 @@ class Trials:
 
     def _drive(self, profile: LaserProfile, placement: Placement) -> Run:
         setting = self.setting
-        world = scenario(setting.spec, profile, (placement.obstacle,), setting.seed)
-        if not setting.cache.knows(world, setting.controller):
+        if not setting.cache.knows(setting.scenario(profile, placement), setting.controller):
             if self.shrink_simulations >= self.shrink_budget:
                 raise Untested(BUDGET_SPENT)
             self.simulations += 1
-        return setting.cache.run(world, setting.controller, setting.client)
+        return setting.drive(profile, placement)
 
 
 def _outcome(result: TrialResult) -> str:

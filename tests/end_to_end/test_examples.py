@@ -43,6 +43,11 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
         # a 5 cm box, and moved a few centimetres along the route the 16-beam robot drives
         # into it while the 32-beam robot passes.
         "examples/paper.lasertest.yaml::size[candidate-misses-2]",
+        # A placement to steer round (found by the search around the witness, a pole beside
+        # the first leg): the robot that sees +-1 rad gets stuck beside it, the one that sees
+        # +-1.57 rad passes. A regression both scanners read: the difference is in what the
+        # navigation stack makes of the narrower scan.
+        "examples/turning.lasertest.yaml::blind_spot_turning[avoid-0]",
         # Boxes and a pole 0.460 m high on the last leg: below the TiM571's raised scan plane
         # (0.540 m), so the candidate drives into each; the LMS111 reads them and passes.
         *(
@@ -104,11 +109,12 @@ def test_the_own_controller_example_drives_its_robots_with_the_gap_follower_to_t
     shutil.copytree(EXAMPLES / "own_controller", pytester.path / "own_controller")
     result = pytester.runpytest("own_controller", "-rA", "--laser-seed=1", "--junitxml=out.xml")
     # The 16-beam scanner loses coverage; with the gap follower, both robots reach the goal in
-    # the empty world and past both witnesses.
-    result.assert_outcomes(passed=3, failed=1)
+    # the empty world, past both witnesses and past the placement to steer round.
+    result.assert_outcomes(passed=4, failed=1)
     result.stdout.fnmatch_lines(
         [
             "PASSED own_controller/gap_follower.lasertest.yaml::size[[]no-obstacle[]]",
+            "PASSED own_controller/gap_follower.lasertest.yaml::size[[]avoid-0[]]",
             "PASSED own_controller/gap_follower.lasertest.yaml::size[[]candidate-misses-0[]]",
             "PASSED own_controller/gap_follower.lasertest.yaml::size[[]baseline-misses-0[]]",
             "FAILED own_controller/gap_follower.lasertest.yaml::size[[]coverage[]]*",

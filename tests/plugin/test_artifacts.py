@@ -29,7 +29,8 @@ def test_a_failing_item_writes_every_number_of_its_comparison(
 def test_passing_items_and_runs_without_the_option_write_nothing(
     pytester: pytest.Pytester, pairs_file: Path
 ) -> None:
-    result = pytester.runpytest("-k", "same", "--laser-artifacts=out")
+    # The placements to steer round are left out: whether they pass depends on the seed.
+    result = pytester.runpytest("-k", "same and not avoid", "--laser-artifacts=out")
     result.assert_outcomes(passed=2, skipped=6)
     pytester.runpytest("-m", "coverage").assert_outcomes(passed=1, failed=1)
     assert not (pytester.path / "out").exists()

@@ -15,12 +15,20 @@ from tests.helpers.texts import PLACEMENT_PAIRS
 
 
 def pair_items(file: str, pair: str, witnesses: int = 3) -> list[str]:
-    """The ids a pair collects: its coverage and control items, then one per direction and
-    witness index."""
-    return [f"{file}::{pair}[coverage]", f"{file}::{pair}[no-obstacle]"] + [
-        f"{file}::{pair}[{direction}-{index}]"
-        for direction in ("candidate-misses", "baseline-misses")
-        for index in range(witnesses)
+    """The ids a pair collects: its coverage and control items, one per placement to steer
+    round, then one per direction and witness index."""
+    return [
+        f"{file}::{pair}[{kind}-{index}]" if index is not None else f"{file}::{pair}[{kind}]"
+        for kind, index in [
+            ("coverage", None),
+            ("no-obstacle", None),
+            *(("avoid", index) for index in range(witnesses)),
+            *(
+                (direction, index)
+                for direction in ("candidate-misses", "baseline-misses")
+                for index in range(witnesses)
+            ),
+        ]
     ]
 
 
@@ -153,12 +161,16 @@ def test_each_pair_collects_a_coverage_item_and_one_item_per_direction_and_witne
     assert collected(result) == [
         "gate.lasertest.yaml::size[coverage]",
         "gate.lasertest.yaml::size[no-obstacle]",
+        "gate.lasertest.yaml::size[avoid-0]",
+        "gate.lasertest.yaml::size[avoid-1]",
         "gate.lasertest.yaml::size[candidate-misses-0]",
         "gate.lasertest.yaml::size[candidate-misses-1]",
         "gate.lasertest.yaml::size[baseline-misses-0]",
         "gate.lasertest.yaml::size[baseline-misses-1]",
         "gate.lasertest.yaml::same[coverage]",
         "gate.lasertest.yaml::same[no-obstacle]",
+        "gate.lasertest.yaml::same[avoid-0]",
+        "gate.lasertest.yaml::same[avoid-1]",
         "gate.lasertest.yaml::same[candidate-misses-0]",
         "gate.lasertest.yaml::same[candidate-misses-1]",
         "gate.lasertest.yaml::same[baseline-misses-0]",
@@ -188,9 +200,21 @@ def test_not_placement_deselects_the_placement_items_and_not_coverage_the_covera
     ]
     assert collected(without_coverage) == [
         "gate.lasertest.yaml::size[no-obstacle]",
+        "gate.lasertest.yaml::size[avoid-0]",
         "gate.lasertest.yaml::size[candidate-misses-0]",
         "gate.lasertest.yaml::size[baseline-misses-0]",
         "gate.lasertest.yaml::same[no-obstacle]",
+        "gate.lasertest.yaml::same[avoid-0]",
         "gate.lasertest.yaml::same[candidate-misses-0]",
         "gate.lasertest.yaml::same[baseline-misses-0]",
+    ]
+
+
+def test_the_avoid_marker_selects_the_placements_to_steer_round(
+    pytester: pytest.Pytester, placement_pairs: Path
+) -> None:
+    result = pytester.runpytest("-m", "avoid", "--co", "-q")
+    assert collected(result) == [
+        "gate.lasertest.yaml::size[avoid-0]",
+        "gate.lasertest.yaml::same[avoid-0]",
     ]

@@ -21,12 +21,12 @@ def test_a_candidate_that_fails_in_the_empty_world_fails_the_control_item_and_on
     # 2 s cannot take either robot 6 m: the failure is everywhere, not at any placement.
     placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 2.0"))
     result = pytester.runpytest("-k", "size", "-rs", "--laser-seed=1")
-    result.assert_outcomes(failed=2, skipped=2)
+    result.assert_outcomes(failed=2, skipped=3)
     result.stdout.fnmatch_lines(
         [
             "the candidate fails without any obstacle: the change breaks the robot everywhere*",
             "  candidate  clearpath_lms1xx_gazebo: FAILED: *goal not reached: * m away at best",
-            "SKIPPED [[]2[]] gate.lasertest.yaml:10: the candidate already fails without any "
+            "SKIPPED [[]3[]] gate.lasertest.yaml:10: the candidate already fails without any "
             "obstacle: see size[[]no-obstacle[]]",
         ]
     )

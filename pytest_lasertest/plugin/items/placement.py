@@ -11,14 +11,14 @@ the plan is kept for the session. Each item then perturbs its witness with Hypot
 
 from __future__ import annotations
 
+import abc
 import hashlib
 from pathlib import Path
-from typing import Any, cast
+from typing import Any
 
-import numpy as np
 import pytest
 
-from pytest_lasertest.model.plan import DirectionPlan, Witness
+from pytest_lasertest.model.plan import AVOID, DirectionPlan, Witness
 from pytest_lasertest.model.verify import DIRECTIONS, Direction, Scene, Verification, verify
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
@@ -32,67 +32,69 @@ from pytest_lasertest.reports.failure import (
     search_properties,
     witness_properties,
 )
-from pytest_lasertest.search.offsets import OffsetBox, offset_box
+from pytest_lasertest.search.offsets import OffsetBox
 from pytest_lasertest.search.trials import TrialFailed, Trials
+from pytest_lasertest.search.witness import search_witness
 
 
-class PlacementItem(PairItem):
-    """One witness of one direction of a pair: the obstacle only one of the scanners reads."""
+class SearchItem(PairItem):
+    """An item searching around one witness: a placement one scanner misses (`PlacementItem`)
+    or one the robot must steer round (`AvoidItem`)."""
 
-    kind = "placement"
-
-    def __init__(
-        self, *, controller: ControllerChoice, direction: Direction, index: int, **kwargs: Any
-    ) -> None:
+    def __init__(self, *, controller: ControllerChoice, index: int, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.controller = controller
-        self.direction: Direction = direction
         self.index = index
 
+    @abc.abstractmethod
+    def _witness(self) -> tuple[Scene, Witness]:
+        """The scene and this item's witness; a skip, reported at the pair's line, without it."""
+
     def runtest(self) -> None:
-        session = self.lasertest
-        plan = session.plan(self.spec, self.pair, self.controller)
-        directed = plan.direction(self.direction)
-        witness = _witness(directed, self.index)
-        if witness is None:
-            # Reported at the pair's line, not at this one.
-            raise pytest.skip.Exception(skip_reason(directed), _use_item_location=True)
-        verification = verify(plan.scene, witness.placement)
+        scene, witness = self._witness()
+        verification = verify(scene, witness.placement)
         self.user_properties += [
             ("lasertest.seed", self.options.seed),
             *witness_properties(witness, verification),
         ]
         if not verification.holds():
             self._reject(witness, verification)
-        if session.control_drive(self.spec, self.pair, self.controller).fails(self.options.policy):
+        self._skip_if_the_control_fails()
+        self._search(scene, witness)
+
+    def _skip_if_the_control_fails(self) -> None:
+        """A candidate that fails without any obstacle fails everywhere: the control item
+        reports it, and this item says so in one line."""
+        control = self.lasertest.control_drive(self.spec, self.pair, self.controller)
+        if control.fails(self.options.policy):
             raise pytest.skip.Exception(
                 f"the candidate already fails without any obstacle: see "
                 f"{ControlItem.name_of(self.pair)}",
                 _use_item_location=True,
             )
-        self._search(plan.scene, witness)
 
     def _search(self, scene: Scene, witness: Witness) -> None:
         """Perturb the witness with Hypothesis; a failure shrinks and fails the item."""
-        from pytest_lasertest.search.perturb import search
-
-        options, sizes, seed = self.options, self.spec.settings.obstacle_sizes, self._seed()
-        box = offset_box(scene, witness.placement, sizes, np.random.default_rng(seed))
-        setting = self.lasertest.setting(self.spec, self.pair, self.controller)
-        shrink = options.budget.shrink_simulations
-        trials = Trials(setting, scene, witness.placement, sizes, options.policy, shrink)
-        database = self.config.rootpath / ".hypothesis" / "examples"
-        outcome = search(
-            box, trials, TrialFailed, options.budget, key=self.nodeid, seed=seed, database=database
+        options = self.options
+        found = search_witness(
+            self.lasertest.setting(self.spec, self.pair, self.controller),
+            scene,
+            witness,
+            self.spec.settings.obstacle_sizes,
+            options.policy,
+            options.budget,
+            key=self.nodeid,
+            seed=self._seed(),
+            database=self.config.rootpath / ".hypothesis" / "examples",
         )
         # Hypothesis's pytest plugin shows this under --hypothesis-show-statistics.
-        self.hypothesis_statistics = outcome.statistics
+        self.hypothesis_statistics = found.statistics
         self.user_properties += [
             ("lasertest.controller", self.controller.name),
-            *search_properties(box, trials),
+            *search_properties(found.box, found.trials),
         ]
-        if outcome.failure is not None:
-            self._fail(witness, cast(TrialFailed, outcome.failure), trials, box)
+        if found.failure is not None:
+            self._fail(witness, found.failure, found.trials, found.box)
 
     def _fail(self, witness: Witness, failed: TrialFailed, trials: Trials, box: OffsetBox) -> None:
         """Record the minimal failure, write its artifacts, and fail the item with it."""
@@ -143,22 +145,69 @@ class PlacementItem(PairItem):
         return write_evidence(self.options.artifacts, failure)
 
 
+class PlacementItem(SearchItem):
+    """One witness of one direction of a pair: the obstacle only one of the scanners reads."""
+
+    kind = "placement"
+
+    def __init__(self, *, direction: Direction, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.direction: Direction = direction
+
+    def _witness(self) -> tuple[Scene, Witness]:
+        plan = self.lasertest.plan(self.spec, self.pair, self.controller)
+        directed = plan.direction(self.direction)
+        witness = _witness(directed, self.index)
+        if witness is None:
+            raise pytest.skip.Exception(skip_reason(directed), _use_item_location=True)
+        return plan.scene, witness
+
+
+class AvoidItem(SearchItem):
+    """One placement both scanners read, partly in the robot's way: the robot must steer round
+    it, and a fault in the software reading the new scanner shows here (`model/avoid.py`)."""
+
+    kind = "placement"
+
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.add_marker("avoid")
+
+    def _witness(self) -> tuple[Scene, Witness]:
+        # Before the baseline drives past the placements: without an obstacle it must pass.
+        self._skip_if_the_control_fails()
+        session = self.lasertest
+        witnesses = session.avoid(self.spec, self.pair, self.controller)
+        if self.index >= len(witnesses):
+            raise pytest.skip.Exception(
+                f"only {len(witnesses)} of the placements to steer round on this route are "
+                "passed by the baseline robot",
+                _use_item_location=True,
+            )
+        return session.scene(self.spec, self.pair, self.controller), witnesses[self.index]
+
+
 def placement_items(
     parent: pytest.File, spec: PairsFile, pair: Pair, controller: ControllerChoice
 ) -> list[pytest.Item]:
-    """The pair's items, `PAIR[DIRECTION-INDEX]`: they depend on the YAML alone, never on Z3."""
-    return [
+    """The pair's items, `PAIR[avoid-INDEX]` then `PAIR[DIRECTION-INDEX]`: they depend on the
+    YAML alone, never on Z3."""
+    indices = range(spec.settings.witnesses)
+    common = {"spec": spec, "pair": pair, "controller": controller}
+    avoid: list[pytest.Item] = [
+        AvoidItem.from_parent(parent, name=f"{pair.name}[{AVOID}-{index}]", index=index, **common)
+        for index in indices
+    ]
+    return avoid + [
         PlacementItem.from_parent(
             parent,
             name=f"{pair.name}[{direction}-{index}]",
-            spec=spec,
-            pair=pair,
-            controller=controller,
             direction=direction,
             index=index,
+            **common,
         )
         for direction in DIRECTIONS
-        for index in range(spec.settings.witnesses)
+        for index in indices
     ]
 
 
