@@ -48,3 +48,22 @@ def test_the_navigation_benchmark_runs_and_ends_with_its_figures() -> None:
     lines = printed("benchmarks/nav.py", "--runs", "1")
     assert NAV_LINE.fullmatch(lines[-1])
     assert re.match(r"\d+ costmap updates: [\d.]+ ms; \d+ DWA commands: ", lines[0])
+
+
+FAULT_LINE = re.compile(
+    r"mutants killed: gate \d+ of \d+, random \d+ of \d+; "
+    r"killed cells per 1000 simulations: gate [\d.]+, random [\d.]+"
+)
+
+
+def test_the_fault_finding_benchmark_runs_and_never_kills_the_equivalent_mutant() -> None:
+    lines = printed(
+        "benchmarks/fault_finding.py",
+        *("--seeds", "1", "--jobs", "1", "--mutants", "nan_guard", "--pairs", "slower"),
+    )
+    assert FAULT_LINE.fullmatch(lines[-1])
+    # The equivalent mutant alone: nothing to kill, and no method kills it.
+    assert lines[-1].startswith("mutants killed: gate 0 of 0, random 0 of 0")
+    rows = [line.split() for line in lines if line.startswith("nan_guard")]
+    assert [row[1] for row in rows] == ["gate", "random", "random"]
+    assert all(row[-1] == "-" and row[-3].startswith("0/1") for row in rows)
