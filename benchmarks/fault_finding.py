@@ -34,24 +34,24 @@ from pathlib import Path
 import numpy as np
 from mutants import MUTANTS, faulty
 
+from pytest_lasertest.model.geometry import FloatArray
 from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
-from pytest_lasertest.model.route import NominalPath, nominal_path
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.pairsfile import PairsFile, load_pairs_file
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.search.budgets import BUDGETS
 from pytest_lasertest.search.drives import RunCache, scenario
-from pytest_lasertest.search.plans import avoid_for, pair_scene, plan_scene
+from pytest_lasertest.search.plans import avoid_for, pair_scene, plan_scene, route_path
 from pytest_lasertest.search.trials import Setting
 from pytest_lasertest.search.witness import passed_by_baseline, search_witness
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Run, Scenario
+from pytest_lasertest.solver.search import MIN_HEIGHT, SearchSettings
 
 PAIRS = Path(__file__).resolve().parent / "fault_finding_pairs.yaml"
 METHODS = ("gate", "random corridor", "random world")
 CORRIDOR = 1.0  # m either side of the route
 WORLD_MARGIN = 2.0  # m around the route's box
-MIN_HEIGHT, MAX_HEIGHT = 0.05, 2.0  # m, as the solver places obstacles
 
 
 @dataclass(frozen=True)
@@ -93,6 +93,7 @@ class Bench:
     def __init__(self) -> None:
         self.spec = load_pairs_file(PAIRS)
         self.client = PhysicsClient()
+        self.polyline = np.array(route_path(self.spec).polyline())  # (V, 2) m
 
 
 class Search:
@@ -172,7 +173,7 @@ def random_placements(bench: Bench, cell: Cell, method: str, budget: int) -> Out
     rng = np.random.default_rng(_seed(cell, method))
     draw = _corridor_point if method == "random corridor" else _world_point
     while search.cache.simulations < budget:
-        obstacles = (_obstacle(rng, draw(spec, rng), spec),)
+        obstacles = (_obstacle(rng, draw(bench.polyline, rng), spec),)
         candidate = search.drive(pair.candidate.profile, obstacles, search.fault)
         if candidate.passed or search.cache.simulations >= budget:
             continue
@@ -182,9 +183,8 @@ def random_placements(bench: Bench, cell: Cell, method: str, budget: int) -> Out
     return search.outcome(None)
 
 
-def _corridor_point(spec: PairsFile, rng: np.random.Generator) -> tuple[float, float]:
-    """A point drawn uniformly within CORRIDOR of the route."""
-    polyline = np.array(_path(spec).polyline())
+def _corridor_point(polyline: FloatArray, rng: np.random.Generator) -> tuple[float, float]:
+    """A point drawn uniformly within CORRIDOR of the route's `polyline` (V, 2) m."""
     low, high = polyline.min(axis=0) - CORRIDOR, polyline.max(axis=0) + CORRIDOR
     while True:
         point = rng.uniform(low, high)
@@ -192,19 +192,13 @@ def _corridor_point(spec: PairsFile, rng: np.random.Generator) -> tuple[float, f
             return float(point[0]), float(point[1])
 
 
-def _world_point(spec: PairsFile, rng: np.random.Generator) -> tuple[float, float]:
-    """A point drawn uniformly in the route's box widened by WORLD_MARGIN."""
-    polyline = np.array(_path(spec).polyline())
+def _world_point(polyline: FloatArray, rng: np.random.Generator) -> tuple[float, float]:
+    """A point drawn uniformly in the box of the route's `polyline` widened by WORLD_MARGIN."""
     point = rng.uniform(polyline.min(axis=0) - WORLD_MARGIN, polyline.max(axis=0) + WORLD_MARGIN)
     return float(point[0]), float(point[1])
 
 
-def _path(spec: PairsFile) -> NominalPath:
-    world, robot = spec.world, spec.robot
-    return nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
-
-
-def _distance_to(polyline: np.ndarray, point: np.ndarray) -> float:
+def _distance_to(polyline: FloatArray, point: FloatArray) -> float:
     starts, ends = polyline[:-1], polyline[1:]
     edges = ends - starts
     along = np.clip(
@@ -217,7 +211,7 @@ def _distance_to(polyline: np.ndarray, point: np.ndarray) -> float:
 def _obstacle(rng: np.random.Generator, point: tuple[float, float], spec: PairsFile) -> Obstacle:
     """A box or a cylinder at `point`, its sides and height drawn within the pairs file's."""
     smallest, largest = spec.settings.obstacle_sizes
-    height = float(rng.uniform(MIN_HEIGHT, MAX_HEIGHT))
+    height = float(rng.uniform(MIN_HEIGHT, SearchSettings().max_height))
     x, y = point
     if rng.random() < 0.5:
         return Cylinder(x, y, float(rng.uniform(smallest, largest)) / 2.0, height)
