@@ -10,7 +10,7 @@ from typing import Literal
 from pytest_lasertest.model.verify import Direction, Placement, Scene, Verification
 
 Status = Literal["sat", "unsat", "unknown"]
-# The name of a placement both scanners read, which the robot must steer round.
+# The name of a placement both scanners read, which the robot must act on (`avoid.py`).
 AVOID = "avoid"
 
 

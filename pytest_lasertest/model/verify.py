@@ -13,8 +13,10 @@ The lead is how far the robot drives between the anchor and `until`; a placement
 `until` reaches the robot's last chance to stop, so that the misser reads the obstacle only when it
 is too late, or never: it stays discriminating along the whole approach.
 
-A placement without a direction is one both scanners read at the anchor, which the robot must
-steer round (`avoid.py`): it is judged on the same margins, and no scanner conceals it.
+A placement without a direction is one both scanners read at the anchor and the robot must act
+on (`avoid.py`): it is judged on the same margins, and no scanner conceals it, but it may obstruct
+in another way: the candidate reads it nearer than its range_min (REP 117's -inf, which a costmap
+drops) at some scan as the robot passes, where the baseline reads it in range.
 """
 
 from __future__ import annotations
@@ -121,11 +123,15 @@ class Verification:
     seen_by_misser_at: tuple[float, ...]  # s, misser scans up to `until` that fail to miss
     lead: float  # m of path from the anchor to `until`
     late: bool  # the misser's first scan after `until` comes after the robot's last chance
+    # m, placed without a direction: how deep the candidate reads it nearer than its range_min
+    # where the baseline reads it in range, along the path; -inf for a direction
+    too_near: float = -math.inf
 
     @property
     def margin(self) -> float:
-        """The smallest of the four margins (m)."""
-        return min(self.detection, self.concealment, self.clearance, self.obstruction)
+        """The smallest of the four margins (m); obstructing by being read too near counts."""
+        obstructs = max(self.obstruction, self.too_near)
+        return min(self.detection, self.concealment, self.clearance, obstructs)
 
     def holds(self, required: float = REQUIRED_MARGIN) -> bool:
         """Whether every margin reaches `required`."""
@@ -143,7 +149,8 @@ def verify(scene: Scene, placement: Placement, last: float | None = None) -> Ver
     )
     clearance, obstruction = _in_the_way(scene, obstacle, placement.anchor)
     if direction is None:
-        return Verification(detection, math.inf, clearance, obstruction, (), 0.0, False)
+        too_near, _ = read_too_near(scene, obstacle)
+        return Verification(detection, math.inf, clearance, obstruction, (), 0.0, False, too_near)
     misser = scene.misser(direction)
     times = scan_times(misser.update_rate, max(placement.until, placement.anchor))
     concealments = miss_margins(misser, scene.path.poses_at(times), obstacle)
@@ -170,6 +177,28 @@ def _in_the_way(scene: Scene, obstacle: Obstacle, anchor: float) -> tuple[float,
     after = swept_polygons(scene.path, scene.robot.footprint_array(), stands, scene.path.duration)
     obstruction = max((-polygon_clearance(piece, obstacle) for piece in after), default=-np.inf)
     return clearance, obstruction
+
+
+def read_too_near(scene: Scene, obstacle: Obstacle) -> tuple[float, float]:
+    """The candidate's scan along the whole path whose beam passes deepest inside the obstacle
+    nearer than its range_min, where the baseline's scan from the same pose reads it in range:
+    how deep (m) and when (s); (-inf, nan) when the candidate's range_min is no larger than the
+    baseline's or no scan comes that near."""
+    candidate, baseline = scene.candidate, scene.baseline
+    if candidate.range_min <= baseline.range_min:
+        return -math.inf, math.nan
+    times = scan_times(candidate.update_rate, scene.path.duration)
+    offsets = candidate.origins(scene.path.poses_at(times)) - (obstacle.x, obstacle.y)
+    times = times[np.hypot(*offsets.T) < candidate.range_min + obstacle.within(0.0)]
+    if not len(times):
+        return -math.inf, math.nan
+    poses = scene.path.poses_at(times)
+    depths = np.minimum(
+        too_near_margins(candidate, poses, obstacle),
+        np.max(hit_margins(baseline, poses, obstacle), axis=1),
+    )
+    deepest = int(np.argmax(depths))
+    return float(depths[deepest]), float(times[deepest])
 
 
 def stopping_clearance(scene: Scene, obstacle: Obstacle, time: float) -> float:
@@ -265,6 +294,26 @@ def readings(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> Fl
     ranges = np.where(ranges > profile.range_max, np.inf, ranges)
     out: FloatArray = np.where(ranges < profile.range_min, -np.inf, ranges)
     return out
+
+
+def too_near_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:
+    """How deep each scan's beams pass inside the obstacle nearer than range_min, where REP 117
+    reports -inf, shape (T,), m; negative: no beam of the scan does. Only beams that may come
+    near the obstacle are cast; a scan with none gets -inf."""
+    reach = obstacle.within(0.0)
+    scans, beams = profile.beams_near(poses, (obstacle.x, obstacle.y), reach)
+    count = len(scans)
+    clear = segment_clearances(
+        profile.origins(poses)[scans],
+        profile.beam_directions(poses, scans, beams),
+        np.zeros(count),
+        np.full(count, profile.range_min),
+        obstacle,
+    )
+    deepest = np.full(len(poses), -np.inf)
+    np.maximum.at(deepest, scans, -clear)
+    above: FloatArray = np.minimum(deepest, obstacle.height - profile.scan_height)
+    return above
 
 
 def _clearances(

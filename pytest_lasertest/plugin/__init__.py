@@ -106,7 +106,7 @@ def pytest_configure(config: pytest.Config) -> None:
     config.addinivalue_line(
         "markers",
         "avoid: a pytest-lasertest placement item searching around an obstacle both scanners "
-        "read, which the robot must steer round",
+        "read, which the robot must steer round or pass while the candidate reads it too near",
     )
     here = config.invocation_params.dir
     named = parse_pairs(config.getoption("laser_pairs"), here, "--laser-pairs")

@@ -119,7 +119,7 @@ class LaserSession:
     def avoid(
         self, spec: PairsFile, pair: Pair, controller: ControllerChoice
     ) -> tuple[Witness, ...]:
-        """The placements the pair's robots must steer round and the baseline robot passes, as
+        """The placements the pair's robots must act on and the baseline robot passes, as
         many as the pairs file asks witnesses per direction, found once per process."""
         key = (spec.path, pair.name)
         if key not in self._avoid:

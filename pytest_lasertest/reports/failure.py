@@ -25,6 +25,8 @@ from pytest_lasertest.model.verify import (
     Scene,
     Verification,
     hit_margins,
+    read_too_near,
+    readings,
 )
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
@@ -152,7 +154,24 @@ def beam_lines(scene: Scene, result: TrialResult) -> list[str]:
         profile = getattr(scene, side)
         reading = beam_reading(profile, pose, placement.obstacle)
         lines.append(f"    {side:<9} {reading.describe()}")
+    if math.isfinite(result.verification.too_near):
+        lines += too_near_lines(scene, placement.obstacle)
     return lines
+
+
+def too_near_lines(scene: Scene, obstacle: Obstacle) -> list[str]:
+    """Where the candidate reads a placement both read nearer than its range_min, beam by beam."""
+    depth, time = read_too_near(scene, obstacle)
+    if not depth > 0.0:
+        return []
+    pose = scene.path.poses_at(np.array([time]))
+    near = np.flatnonzero(np.isneginf(readings(scene.candidate, pose, obstacle)[0]))
+    beams = ", ".join(map(str, near[:8])) + (" ..." if len(near) > 8 else "")
+    return [
+        f"  too near   at t = {time:.2f} s, robot at {pose_text(*pose[0].tolist())}: candidate "
+        f"beams {beams} read it nearer than range_min {scene.candidate.range_min} m (-inf), "
+        f"the baseline in range"
+    ]
 
 
 def margins_text(verification: Verification) -> str:
@@ -163,7 +182,10 @@ def margins_text(verification: Verification) -> str:
         "clearance": verification.clearance,
         "obstruction": verification.obstruction,
     }
-    # A placement both scanners read has no misser to conceal it: its concealment is infinite.
+    # Only a placement both scanners read is judged on being read too near (else it is -inf), and
+    # it has no misser to conceal it: its concealment is infinite.
+    if math.isfinite(verification.too_near):
+        parts["read too near"] = verification.too_near
     return ", ".join(
         f"{name} {value * 1000:.1f} mm" for name, value in parts.items() if value != math.inf
     )

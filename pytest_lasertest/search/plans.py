@@ -1,6 +1,6 @@
 """A pair of a pairs file as the gate plans it: both scanners on the pairs file's robot, along
-its route, with its settings and constraints; the solver's witnesses, and the placements the
-robot must steer round.
+its route, with its settings and constraints; the solver's witnesses, and the placements both
+scanners read that the robot must act on.
 
 The path is the route's legs and turns, timed as the baseline robot drove them without an
 obstacle when that run is given (as the gate's items and `lasertest plan` do), else at the robot's
@@ -38,7 +38,7 @@ def plan_scene(spec: PairsFile, pair: Pair, scene: Scene) -> PairPlan:
 
 
 def avoid_for(spec: PairsFile, scene: Scene) -> tuple[Witness, ...]:
-    """The placements both scanners read that the robot must steer round (`model/avoid.py`)."""
+    """The placements both scanners read that the robot must act on (`model/avoid.py`)."""
     return avoid_witnesses(scene, spec.settings.obstacle_sizes)
 
 

@@ -2,7 +2,8 @@
 Hypothesis drawing from it, each offset a trial, a failure shrunk toward the witness.
 
 A placement item runs one of these; so does `benchmarks/fault_finding.py`, outside pytest. The
-placements the robot must steer round are searched only where the baseline robot passes.
+placements both scanners read, which the robot must act on, are searched only where the baseline
+robot passes.
 Hypothesis is imported on the first search (`perturb.py`).
 """
 

@@ -1,4 +1,4 @@
-"""Placements both scanners read that the robot must steer round (`model/avoid.py`)."""
+"""Placements both scanners read that the robot must act on (`model/avoid.py`)."""
 
 from __future__ import annotations
 
@@ -11,8 +11,14 @@ import pytest
 from pytest_lasertest.model.avoid import LOOKAHEAD, SEEDS, avoid_witnesses
 from pytest_lasertest.model.geometry import Point2D, Pose2D
 from pytest_lasertest.model.obstacles import Cylinder
-from pytest_lasertest.model.route import nominal_path
-from pytest_lasertest.model.verify import REQUIRED_MARGIN, Scene, hit_margins, verify
+from pytest_lasertest.model.route import nominal_path, scan_times
+from pytest_lasertest.model.verify import (
+    REQUIRED_MARGIN,
+    Scene,
+    hit_margins,
+    readings,
+    verify,
+)
 from tests.helpers.paper import PAPER, scene
 
 SIZES = (0.05, 1.0)  # m
@@ -87,3 +93,50 @@ def test_a_seed_no_scanner_can_read_at_its_anchor_is_passed_over() -> None:
     backwards = dataclasses.replace(here.candidate, min_angle=2.5, max_angle=3.0)
     assert avoid_witnesses(dataclasses.replace(here, candidate=backwards), SIZES) == ()
     assert len(SEEDS) >= 3
+
+
+def near_field(range_min: float = 0.6) -> Scene:
+    """The turning route, the candidate the baseline with its range_min raised to hide the
+    chassis."""
+    here = turning("size")
+    candidate = dataclasses.replace(here.baseline, range_min=range_min)
+    return dataclasses.replace(here, candidate=candidate)
+
+
+def test_a_larger_range_min_puts_placements_read_too_near_first() -> None:
+    here = near_field()
+    witnesses = avoid_witnesses(here, SIZES)
+    first = witnesses[0].verification
+    assert first.too_near >= REQUIRED_MARGIN
+    assert first.obstruction < 0.0  # clear of what the robot sweeps: it drives past untouched
+    assert first.clearance >= REQUIRED_MARGIN
+    assert first.holds()
+
+
+def test_the_candidate_reads_a_placement_too_near_where_the_baseline_reads_it_in_range() -> None:
+    here = near_field()
+    placement = avoid_witnesses(here, SIZES)[0].placement
+    times = scan_times(here.candidate.update_rate, here.path.duration)
+    poses = here.path.poses_at(times)
+    candidate = readings(here.candidate, poses, placement.obstacle)  # (T, N) m
+    baseline = readings(here.baseline, poses, placement.obstacle)
+    too_near = np.isneginf(candidate) & np.isfinite(baseline)
+    assert too_near.any()
+    assert np.all(baseline[too_near] >= here.baseline.range_min)
+
+
+def test_the_robot_stops_short_of_the_placement_beyond_the_turn_and_turns_away() -> None:
+    here = near_field()
+    obstacle = avoid_witnesses(here, SIZES)[0].placement.obstacle
+    assert isinstance(obstacle, Cylinder)
+    assert obstacle.x > 4.0 + 0.6  # straight on beyond the corner at (4, 0), past the turning disc
+    assert obstacle.y == pytest.approx(0.0)
+
+
+@pytest.mark.parametrize("range_min", [0.1, 0.05])
+def test_no_placement_is_read_too_near_unless_the_candidate_range_min_is_larger(
+    range_min: float,
+) -> None:
+    for witness in avoid_witnesses(near_field(range_min), SIZES):
+        assert witness.verification.too_near == -math.inf
+        assert witness.verification.obstruction >= REQUIRED_MARGIN

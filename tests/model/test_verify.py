@@ -159,3 +159,25 @@ def test_the_margin_of_a_verification_is_the_smallest_of_its_four_margins(smalle
     assert verification.margin == 0.003
     assert not verification.holds()
     assert verification.holds(required=0.003)
+
+
+def test_being_read_too_near_obstructs_a_placement_both_read_as_standing_in_the_way_does() -> None:
+    margins = dict(zip(MARGINS, (0.04, 0.03, 0.02, -0.5), strict=True))
+    apart = Verification(**margins, seen_by_misser_at=(), lead=0.0, late=False)
+    assert not apart.holds()
+    assert dataclasses.replace(apart, too_near=0.01).margin == 0.01
+    assert dataclasses.replace(apart, too_near=0.1).margin == 0.02
+
+
+def test_a_placement_both_read_holds_beside_the_path_only_if_the_candidate_reads_it_too_near() -> (
+    None
+):
+    # Beside the straight route, 0.36 m clear of the Husky's side, 0.7 m from its scanner.
+    beside = Placement(Cylinder(x=4.0, y=0.9, radius=0.2, height=1.0), None, 4.0, 4.0)
+    same = scene("size")
+    hidden = dataclasses.replace(same, candidate=dataclasses.replace(same.candidate, range_min=0.9))
+
+    assert verify(same, beside).too_near == -np.inf
+    assert not verify(same, beside).holds()
+    assert verify(hidden, beside).too_near >= REQUIRED_MARGIN
+    assert verify(hidden, beside).holds()

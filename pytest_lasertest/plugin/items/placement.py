@@ -39,7 +39,7 @@ from pytest_lasertest.search.witness import search_witness
 
 class SearchItem(PairItem):
     """An item searching around one witness: a placement one scanner misses (`PlacementItem`)
-    or one the robot must steer round (`AvoidItem`)."""
+    or one both read, which the robot must act on (`AvoidItem`)."""
 
     def __init__(self, *, controller: ControllerChoice, index: int, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -164,8 +164,9 @@ class PlacementItem(SearchItem):
 
 
 class AvoidItem(SearchItem):
-    """One placement both scanners read, partly in the robot's way: the robot must steer round
-    it, and a fault in the software reading the new scanner shows here (`model/avoid.py`)."""
+    """One placement both scanners read that the robot must act on: partly in its way, so that it
+    steers round it, or beside it, read too near by a candidate with a larger range_min. A fault
+    in the software reading the new scanner shows here (`model/avoid.py`)."""
 
     kind = "placement"
 
