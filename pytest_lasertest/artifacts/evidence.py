@@ -2,6 +2,8 @@
 file that replays the case, a Gazebo world and a JSON file with every number, side by side; for
 a failure without an obstacle, the picture, the empty world and the numbers; for a lost coverage
 or a witness the ray cast rejects, the numbers. Every JSON file starts with the same header.
+Each file is written on its own, best-effort (`files.write_best_effort`): one the operating
+system refuses is reported beside the item's failure, and the others are still written.
 
 The picture shows the moment the candidate failed: its first collision, the instant it was
 judged stuck, or (when it simply ran out of time) its last pose; both robots' trajectories and
@@ -15,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pytest_lasertest.artifacts.files import artifact_path, write_json
+from pytest_lasertest.artifacts.files import artifact_path, write_best_effort, write_json
 from pytest_lasertest.artifacts.picture import BeamFan, FailureFigure, draw_failure
 from pytest_lasertest.artifacts.repro import write_repro
 from pytest_lasertest.artifacts.sdf import write_world
@@ -29,20 +31,19 @@ from pytest_lasertest.model.verify import Verification
 from pytest_lasertest.pairsfile import Pair, PairsFile, Scanner
 from pytest_lasertest.pairsfile.placements import PinnedPlacement
 from pytest_lasertest.reports.failure import PlacementFailure
-from pytest_lasertest.reports.formats import obstacle_json, witness_json
+from pytest_lasertest.reports.formats import Artifacts, obstacle_json, witness_json
 from pytest_lasertest.search.drives import PairDrive
 from pytest_lasertest.sim.scenario import Run
 
 SUFFIXES = (".png", ".lasertest.yaml", ".world", ".json")
 
 
-def write_evidence(directory: Path, failure: PlacementFailure) -> tuple[Path, ...]:
-    """Write the four artifacts of `failure` below `directory`; returns their paths."""
+def write_evidence(directory: Path, failure: PlacementFailure) -> Artifacts:
+    """Write the four artifacts of `failure` below `directory`, each best-effort."""
     png, repro, world, numbers = (
         artifact_path(directory, failure.nodeid, suffix) for suffix in SUFFIXES
     )
     obstacle = failure.result.placement.obstacle
-    draw_failure(failure_figure(failure), png)
     pinned = PinnedPlacement(
         obstacle, failure.seed, failure.result.placement.direction, Location(repro, 1)
     )
@@ -51,10 +52,14 @@ def write_evidence(directory: Path, failure: PlacementFailure) -> tuple[Path, ..
         "Collect this file on its own to replay it; commit it (or copy its pair into your",
         "pairs file) to keep the case as a regression test.",
     ]
-    write_repro(repro, failure.spec, failure.pair, pinned, header)
-    write_world(world, failure.pair.name, (obstacle,))
-    write_json(numbers, evidence_json(failure))
-    return png, repro, world, numbers
+    return write_best_effort(
+        (
+            (png, lambda: draw_failure(failure_figure(failure), png)),
+            (repro, lambda: write_repro(repro, failure.spec, failure.pair, pinned, header)),
+            (world, lambda: write_world(world, failure.pair.name, (obstacle,))),
+            (numbers, lambda: write_json(numbers, evidence_json(failure))),
+        )
+    )
 
 
 def failure_moment(run: Run) -> tuple[float, str]:
@@ -120,20 +125,24 @@ def write_control_evidence(
     pair: Pair,
     drives: PairDrive,
     run_options: dict[str, object],
-) -> tuple[Path, ...]:
-    """The artifacts of a failure in the empty world: the picture, the empty Gazebo world and
-    every number; the item itself replays it."""
+) -> Artifacts:
+    """The artifacts of a failure in the empty world, each best-effort: the picture, the empty
+    Gazebo world and every number; the item itself replays it."""
     png, _, world, numbers = (artifact_path(directory, nodeid, suffix) for suffix in SUFFIXES)
     runs = (drives.baseline, drives.candidate)
-    draw_failure(drive_figure(f"{nodeid}: no obstacle", spec, pair, runs, None), png)
-    write_world(world, pair.name, ())
     evidence = {
         **evidence_header(nodeid, spec, pair, run_options),
         "candidate": _run_json(drives.candidate),
         "baseline": _run_json(drives.baseline),
     }
-    write_json(numbers, evidence)
-    return png, world, numbers
+    figure = drive_figure(f"{nodeid}: no obstacle", spec, pair, runs, None)
+    return write_best_effort(
+        (
+            (png, lambda: draw_failure(figure, png)),
+            (world, lambda: write_world(world, pair.name, ())),
+            (numbers, lambda: write_json(numbers, evidence)),
+        )
+    )
 
 
 def write_coverage_evidence(
@@ -142,18 +151,18 @@ def write_coverage_evidence(
     scanners: tuple[Scanner, Scanner],
     comparison: CoverageComparison,
     header: dict[str, object],
-) -> Path:
-    """The numbers of a lost coverage: both scanners' profiles and LaserScans, and every change."""
+) -> Artifacts:
+    """The numbers of a lost coverage, best-effort: both scanners' profiles and LaserScans, and
+    every change."""
     baseline, candidate = scanners
-    return write_json(
-        artifact_path(directory, nodeid, ".json"),
-        {
-            **header,
-            "baseline": _scanner_json(baseline),
-            "candidate": _scanner_json(candidate),
-            "coverage": dataclasses.asdict(comparison),
-        },
-    )
+    path = artifact_path(directory, nodeid, ".json")
+    evidence = {
+        **header,
+        "baseline": _scanner_json(baseline),
+        "candidate": _scanner_json(candidate),
+        "coverage": dataclasses.asdict(comparison),
+    }
+    return write_best_effort(((path, lambda: write_json(path, evidence)),))
 
 
 def write_rejection_evidence(
@@ -162,14 +171,16 @@ def write_rejection_evidence(
     witness: Witness,
     verification: Verification,
     header: dict[str, object],
-) -> Path:
-    """The numbers of a witness the exact ray cast rejects: the witness and every margin."""
+) -> Artifacts:
+    """The numbers of a witness the exact ray cast rejects, best-effort: the witness and every
+    margin."""
+    path = artifact_path(directory, nodeid, ".json")
     evidence = {
         **header,
         "witness": witness_json(witness),
         "verification": dataclasses.asdict(verification),
     }
-    return write_json(artifact_path(directory, nodeid, ".json"), evidence)
+    return write_best_effort(((path, lambda: write_json(path, evidence)),))
 
 
 def evidence_header(

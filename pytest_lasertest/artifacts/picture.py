@@ -109,9 +109,15 @@ def build_figure(figure: FailureFigure) -> Figure:
     handles: list[Artist] = [*beams, *obstacles, start, *paths, *footprints, goal, failure]
     # Below the axes, so it never hides the obstacle or a path and leaves the view its width.
     picture.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8)
-    picture.suptitle(figure.title, fontsize=10)
+    picture.suptitle(_literal(figure.title), fontsize=10)
     _fit_view(picture, axes, low, high)
     return picture
+
+
+def _literal(text: str) -> str:
+    """`text` (holding names a user wrote) shown as written: matplotlib reads `$...$` as
+    mathematics, and a name such as `$\\frac$` would stop the picture being drawn at all."""
+    return text.replace("$", r"\$")
 
 
 def _robots(figure: FailureFigure) -> tuple[tuple[str, str, FloatArray, Pose], ...]:
@@ -197,7 +203,7 @@ def _draw_beams(axes: Axes, fan: BeamFan, colour: str) -> LineCollection:
     segments = np.stack([fan.origins, fan.ends], axis=1)
     misses = LineCollection(list(segments[~fan.hits]), colors=colour, linewidths=0.5, alpha=0.3)
     hits = LineCollection(list(segments[fan.hits]), colors=colour, linewidths=1.4, alpha=0.9)
-    hits.set_label(f"{fan.label} ({int(np.count_nonzero(fan.hits))} on the obstacle)")
+    hits.set_label(f"{_literal(fan.label)} ({int(np.count_nonzero(fan.hits))} on the obstacle)")
     for beams in (misses, hits):
         beams.set_zorder(3)
         # Beams run to range_max: they must not widen the view.

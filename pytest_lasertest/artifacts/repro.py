@@ -75,15 +75,24 @@ def write_repro(
 
 def _written(spec: PairsFile) -> dict[str, object]:
     """The pairs file's sections as the user wrote them (anchors and merge keys resolved)."""
-    written = yaml.safe_load(read_text(spec.path))
+    try:
+        written = yaml.safe_load(read_text(spec.path))
+    except yaml.YAMLError:
+        # It parsed when it was collected: someone is editing it.
+        written = None
     if not isinstance(written, dict):
-        raise SpecError(
-            Location(spec.path, 1),
-            "",
-            "the pairs file changed since it was read and is no longer a mapping",
-            "restore it, or run again",
-        )
+        raise _changed(spec.path, "is no longer a mapping of sections")
     return written
+
+
+def _changed(path: Path, problem: str) -> SpecError:
+    """The pairs file, re-read to copy it into the repro, is not what the run read."""
+    return SpecError(
+        Location(path, 1),
+        "",
+        f"the pairs file changed since it was read and {problem}",
+        "restore it, or run again",
+    )
 
 
 def _pair_mapping(
@@ -92,11 +101,11 @@ def _pair_mapping(
     """The pair's scanners as written, and `pinned` as its one placement."""
     pairs = written.get("pairs")
     sides = pairs.get(pair.name) if isinstance(pairs, dict) else None
-    if not isinstance(sides, dict):
+    if not isinstance(sides, dict) or not {"baseline", "candidate"} <= sides.keys():
         raise SpecError(
             pair.location,
             f"pairs.{pair.name}",
-            "the pair is gone from the file since it was read",
+            "the pair is gone from the file since it was read, or lost a scanner",
             "restore it, or run again",
         )
     placement: dict[str, object] = {"obstacle": obstacle_fields(pinned.obstacle)}

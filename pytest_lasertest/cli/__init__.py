@@ -5,6 +5,7 @@ models, `doctor` checks the installation."""
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -12,13 +13,38 @@ from typing import Any
 
 from pytest_lasertest.cli.commands import print_catalogue, print_explain, print_plan, print_profile
 from pytest_lasertest.cli.doctor import run_doctor
+from pytest_lasertest.cli.errors import (
+    EXIT_ERROR,
+    ArgumentError,
+    CommandError,
+    Parser,
+    report_error,
+)
 from pytest_lasertest.descriptions.gitref import GitError
 from pytest_lasertest.inputs.errors import SpecError
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run one subcommand; the exit status is 0 on success."""
-    parser = argparse.ArgumentParser(prog="lasertest", description=__doc__)
+    """Run one subcommand; the exit status is 0 on success and 2 on an error, which is printed
+    on stderr (and with --json as a JSON object on stdout too, `errors.py`)."""
+    arguments = list(sys.argv[1:] if argv is None else argv)
+    try:
+        status = _run(_parser().parse_args(arguments))
+        sys.stdout.flush()  # here, where a reader that went away can still be caught
+    except BrokenPipeError:
+        # The reader stopped early (`| head`): stop quietly, as other Unix tools do, and keep
+        # Python from complaining when it flushes stdout at exit.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
+    except (ArgumentError, CommandError, SpecError, GitError) as error:
+        report_error(error, as_json="--json" in arguments)
+        return EXIT_ERROR
+    return status
+
+
+def _parser() -> Parser:
+    """`lasertest` and its subcommands."""
+    parser = Parser(prog="lasertest", description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
     plan = commands.add_parser("plan", help="find the placements that tell each pair apart")
     plan.add_argument("pairs_file", type=Path, metavar="PAIRS.yaml")
@@ -32,20 +58,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     catalogue = commands.add_parser("catalogue", help="list the scanner models `model:` can name")
     catalogue.add_argument("--json", action="store_true", help="print JSON instead of a table")
     commands.add_parser("doctor", help="check the installation and say what to fix")
-    args = parser.parse_args(argv)
-    try:
-        if args.command == "plan":
-            return print_plan(args.pairs_file, as_json=args.json)
-        if args.command == "explain":
-            return print_explain(args.pairs_file, args.pair, args.witness, as_json=args.json)
-        if args.command == "profile":
-            return print_profile(args)
-        if args.command == "catalogue":
-            return print_catalogue(as_json=args.json)
-        return run_doctor()
-    except (SpecError, GitError) as error:
-        print(f"lasertest: {error}", file=sys.stderr)
-        return 2
+    return parser
+
+
+def _run(args: argparse.Namespace) -> int:
+    """The subcommand `args` names."""
+    if args.command == "plan":
+        return print_plan(args.pairs_file, as_json=args.json)
+    if args.command == "explain":
+        return print_explain(args.pairs_file, args.pair, args.witness, as_json=args.json)
+    if args.command == "profile":
+        return print_profile(args)
+    if args.command == "catalogue":
+        return print_catalogue(as_json=args.json)
+    return run_doctor()
 
 
 def add_profile_parser(commands: Any) -> None:
@@ -90,7 +116,13 @@ def parse_package(text: str) -> tuple[str, Path]:
     name, separator, directory = text.partition("=")
     if not separator or not name or not directory:
         raise argparse.ArgumentTypeError(f"{text!r} is not NAME=DIR, e.g. lms1xx=src/LMS1xx")
-    return name, Path(directory).absolute()
+    path = Path(directory).absolute()
+    if not path.is_dir():
+        what = "a file" if path.exists() else "missing"
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: {directory!r} is {what}; DIR is the directory `$(find {name})` stands for"
+        )
+    return name, path
 
 
 if __name__ == "__main__":

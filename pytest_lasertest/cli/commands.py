@@ -5,26 +5,33 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
-import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
+from pytest_lasertest.cli.errors import CommandError, check_file
+from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.plan import PairPlan
 from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
 from pytest_lasertest.pairsfile.catalogue import load_catalogue
 from pytest_lasertest.pairsfile.controller import default_controller
 from pytest_lasertest.reports.catalogue import ModelFigures, catalogue_table
+from pytest_lasertest.reports.formats import json_text
+
+if TYPE_CHECKING:
+    from pytest_lasertest.sim.scenario import ControllerError
+
+DESCRIPTION = "a URDF, xacro or SDF file"
 
 
 def print_plan(path: Path, *, as_json: bool) -> int:
     """Solve every pair of a pairs file and print the verified witnesses."""
     from pytest_lasertest.reports.plan import plan_json, plan_text
 
-    spec = load_pairs_file(path)
+    spec = load_pairs_file(_pairs_file(path, "plan"))
     plans = [_driven_plan(spec, pair) for pair in spec.pairs]
     if as_json:
-        print(json.dumps({"pairs": [plan_json(plan) for plan in plans]}, indent=2))
+        print(json_text({"pairs": [plan_json(plan) for plan in plans]}))
     else:
         print("\n".join(plan_text(plan) for plan in plans))
     return 0
@@ -34,19 +41,25 @@ def print_explain(path: Path, pair_name: str, witness_id: str, *, as_json: bool)
     """Plan one pair and print which beams of each scanner read one witness's obstacle."""
     from pytest_lasertest.reports.explain import explain_json, explain_scans, explain_text
 
-    spec = load_pairs_file(path)
+    spec = load_pairs_file(_pairs_file(path, "explain"))
     pair = next((pair for pair in spec.pairs if pair.name == pair_name), None)
     if pair is None:
         names = ", ".join(pair.name for pair in spec.pairs)
-        return _usage_error(f"no pair {pair_name!r} in {path}; pairs: {names}")
+        raise CommandError(
+            f"no pair {pair_name!r} in {path}", f"give one of its pairs: {names}", path
+        )
     plan = _driven_plan(spec, pair)
     witness = plan.find(witness_id)
     if witness is None:
         ids = ", ".join(witness.id for witness in plan.witnesses()) or "none"
-        return _usage_error(f"pair {pair_name!r} has no witness {witness_id!r}; witnesses: {ids}")
+        raise CommandError(
+            f"pair {pair_name!r} has no witness {witness_id!r}",
+            f"give one of the witnesses `lasertest plan` prints for it: {ids}",
+            path,
+        )
     scans = explain_scans(plan.scene, witness)
     if as_json:
-        print(json.dumps(explain_json(pair_name, witness, scans), indent=2))
+        print(json_text(explain_json(pair_name, witness, scans)))
     else:
         print(explain_text(pair_name, witness, scans))
     return 0
@@ -57,6 +70,8 @@ def print_profile(args: argparse.Namespace) -> int:
     from pytest_lasertest.descriptions.profile import read_profile
     from pytest_lasertest.reports.description import profile_read_json, profile_read_text
 
+    if args.ref is None:  # at a revision, the working tree may well lack the file
+        check_file(args.file, DESCRIPTION, "lasertest profile robots/mybot/robot.urdf.xacro")
     read = read_profile(
         args.file,
         sensor=args.sensor,
@@ -64,7 +79,7 @@ def print_profile(args: argparse.Namespace) -> int:
         args=dict(args.xacro_arg),
         packages=dict(args.package),
     )
-    print(json.dumps(profile_read_json(read), indent=2) if args.json else profile_read_text(read))
+    print(json_text(profile_read_json(read)) if args.json else profile_read_text(read))
     return 0
 
 
@@ -75,7 +90,7 @@ def print_catalogue(*, as_json: bool) -> int:
         for key, entry in load_catalogue().entries.items()
     ]
     if as_json:
-        print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
+        print(json_text([dataclasses.asdict(row) for row in rows]))
     else:
         print(catalogue_table(rows))
     return 0
@@ -88,11 +103,32 @@ def _driven_plan(spec: PairsFile, pair: Pair) -> PairPlan:
     difference to it."""
     from pytest_lasertest.search.drives import drive
     from pytest_lasertest.search.plans import plan_for
+    from pytest_lasertest.sim.scenario import ControllerError
 
     controller = spec.controller or default_controller(spec.path)
-    return plan_for(spec, pair, drive(spec, pair.baseline.profile, (), 0, controller.factory))
+    try:
+        run = drive(spec, pair.baseline.profile, (), 0, controller.factory)
+    except ControllerError as error:
+        raise _broken(error, pair) from None
+    return plan_for(spec, pair, run)
 
 
-def _usage_error(message: str) -> int:
-    print(f"lasertest: {message}", file=sys.stderr)
-    return 2
+def _broken(error: ControllerError, pair: Pair) -> CommandError:
+    """A controller that broke the drive timing `pair`'s path: what it did, where in its code,
+    and the fix (`sim/guard.py`)."""
+    fault = error.fault
+    frame = fault.frames[0] if fault.frames else None  # the controller's own call
+    file = Path(frame.path) if frame else None
+    where = f" (at {display_path(file)}:{frame.line} in {frame.function})" if frame and file else ""
+    problem = (
+        f"the controller {error.controller} broke the obstacle-free drive that times pair "
+        f"{pair.name!r}: {fault.describe()}{where}"
+    )
+    line = frame.line if frame else None
+    return CommandError(problem, fault.fix, file, kind="controller", line=line)
+
+
+def _pairs_file(path: Path, verb: str) -> Path:
+    """`path`, checked to be a readable pairs file before it is read."""
+    check_file(path, "a pairs file", f"lasertest {verb} robots/husky/gate.lasertest.yaml")
+    return path

@@ -11,6 +11,8 @@ import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
+from pytest_lasertest.descriptions.files import MAX_FILE_BYTES
+
 _REPOSITORY_VARIABLES = frozenset(
     {"GIT_DIR", "GIT_WORK_TREE", "GIT_INDEX_FILE", "GIT_OBJECT_DIRECTORY", "GIT_COMMON_DIR"}
 )
@@ -44,39 +46,50 @@ class GitRevision:
 
     def holds(self, path: Path) -> bool:
         """Whether `path` (absolute) lies inside the repository's tree (below root)."""
-        return self.root in path.resolve().parents
+        return self.root in _resolved(path).parents
 
     def read(self, path: Path) -> bytes:
         """The bytes of `path` (absolute, inside root) at this revision.
 
         Raises FileNotFoundError when the revision has no such file (or a directory there),
-        GitError for anything else git reports and ValueError for a path outside root.
+        GitError for anything else git reports or a blob over MAX_FILE_BYTES, and ValueError
+        for a path outside root.
         """
         relpath = self._relative(path)
         # The commit is 40 hex digits, so git splits `<commit>:<path>` at the first colon and
         # a path holding ':' or starting with '-' stays a path.
         name = f"{self.commit}:{relpath}"
-        if "\n" in name:  # `--batch` reads one name per line
+        if "\n" in name:  # `--batch-check` reads one name per line
             raise _missing(path, f"{relpath!r} has a line break, which git cannot look up here")
-        # One process tells the object's type and hands over its bytes: `--batch` reads the
-        # name from stdin and answers "<id> <type> <size>", or "<name> missing".
-        done = _git(self.root, "cat-file", "--batch", stdin=os.fsencode(f"{name}\n"))
-        header, _, content = done.stdout.partition(b"\n")
+        # The object's id, type and size first, so that a huge blob is refused unread:
+        # `--batch-check` reads the name from stdin and answers "<id> <type> <size>", or
+        # "<name> missing".
+        done = _git(self.root, "cat-file", "--batch-check", stdin=os.fsencode(f"{name}\n"))
+        header = done.stdout.rstrip(b"\n")
         if done.returncode != 0:
             raise self._unreadable(relpath, _stderr(done))
         if header.endswith((b" missing", b" ambiguous")):
-            # `--batch` says "missing" too when the tree names an object the store has lost.
+            # It says "missing" too when the tree names an object the store has lost.
             if _git(self.root, "rev-parse", "--verify", "--quiet", name).returncode == 0:
                 raise self._unreadable(relpath, f"its object is missing: {os.fsdecode(header)}")
             raise _missing(path, f"{relpath} does not exist at {self.label}")
-        _, kind, size = header.split()
+        blob, kind, size = header.split()
         if kind != b"blob":
             raise _missing(path, f"{relpath} is a directory at {self.label}, not a file")
-        return content[: int(size)]
+        if int(size) > MAX_FILE_BYTES:
+            raise GitError(
+                f"{relpath} at {self.label} is larger than {MAX_FILE_BYTES // (1024 * 1024)} MB, "
+                "the most the gate reads of a description file",
+                "point `urdf:` at the robot's description; robot descriptions are kilobytes",
+            )
+        content = _git(self.root, "cat-file", "blob", os.fsdecode(blob))
+        if content.returncode != 0:
+            raise self._unreadable(relpath, _stderr(content))
+        return content.stdout
 
     def _relative(self, path: Path) -> str:
         """`path` relative to root with '/' between parts, as git names it in a tree."""
-        resolved = path.resolve()
+        resolved = _resolved(path)
         if self.root not in resolved.parents:
             raise ValueError(f"{path} lies outside the repository at {self.root}")
         return resolved.relative_to(self.root).as_posix()
@@ -95,8 +108,29 @@ def open_revision(directory: Path, ref: str) -> GitRevision:
     option or is not a commit.
     """
     _check_ref(ref)
-    root = _toplevel(directory)
+    root = _toplevel(directory, directory)
     return GitRevision(root=root, ref=ref, commit=_resolve(root, ref))
+
+
+def revision_holding(path: Path, ref: str) -> GitRevision:
+    """The revision `ref` of the repository that holds the file `path` (absolute), which the
+    working tree may lack (a file the change deletes).
+
+    GitError as open_revision's, and when the file lies outside that repository (a symbolic
+    link out of it, or a directory that only exists in another repository's tree).
+    """
+    _check_ref(ref)
+    directory = next(parent for parent in path.parents if parent.is_dir())
+    root = _toplevel(directory, path)
+    revision = GitRevision(root=root, ref=ref, commit=_resolve(root, ref))
+    if not revision.holds(path):
+        raise GitError(
+            f"{path} lies outside the git repository at {root} (it resolves to "
+            f"{_resolved(path)}), so `ref: {ref}` cannot read it at a revision",
+            "point `urdf:` at the file inside the repository, or drop `ref:` to read the "
+            "working tree",
+        )
+    return revision
 
 
 def _check_ref(ref: str) -> None:
@@ -114,14 +148,16 @@ def _check_ref(ref: str) -> None:
         )
 
 
-def _toplevel(directory: Path) -> Path:
-    """The top-level directory of the work tree that holds `directory`."""
+def _toplevel(directory: Path, subject: Path) -> Path:
+    """The top-level directory of the work tree that holds `directory`; errors name `subject`
+    (the directory, or the file looked up in it)."""
     done = _git(directory, "rev-parse", "--show-toplevel")
     message = _stderr(done)
     if done.returncode != 0 and "not a git repository" in message:
         raise GitError(
-            f"{directory} is not inside a git repository",
-            "run the gate in a clone of your repository, or drop `ref:` to read the working tree",
+            f"{subject} is not inside a git repository, so `ref:` cannot read it at a revision",
+            "keep the description in a git repository (a clone of yours) and commit it, or drop "
+            "`ref:` to read the working tree",
         )
     top = done.stdout.rstrip(b"\r\n")
     if done.returncode != 0 or not top:
@@ -177,3 +213,9 @@ def _stderr(done: subprocess.CompletedProcess[bytes]) -> str:
 
 def _missing(path: Path, message: str) -> FileNotFoundError:
     return FileNotFoundError(errno.ENOENT, message, str(path))
+
+
+def _resolved(path: Path) -> Path:
+    """`path` with its symbolic links followed; a link loop is left as it is (Path.resolve
+    raises RuntimeError on one) and reading it reports the loop."""
+    return Path(os.path.realpath(path))

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from pytest_lasertest.descriptions.absent import no_laser_error
+from pytest_lasertest.descriptions.files import UnreadableFile
 from pytest_lasertest.descriptions.laser_block import (
     Locate,
     check_planar,
@@ -184,6 +185,8 @@ def _read(description: DescriptionFile) -> _Document:
             f"{reader.name(path)} does not exist",
             "check the path (relative to the pairs file) and its spelling",
         ) from None
+    except UnreadableFile as error:
+        raise SpecError(Location(path, 1), "", error.problem, error.fix) from None
     root = parse_xml(data, path)
     if not _uses_xacro(root, path):
         return _Document(path, root, {path: root})

@@ -19,6 +19,7 @@ from pytest_lasertest.model.geometry import Pose3D
 
 FOOTPRINT = "base_footprint"
 POSE_FIX = "write six numbers: x y z (m) roll pitch yaw (rad)"
+MAX_POSE_NUMBER = 1e6  # m or rad, in any one <origin> or <pose>
 
 
 @dataclass(frozen=True)
@@ -38,7 +39,7 @@ def urdf_mount(robot: XmlElement, link: str, sensor: XmlElement, locate: Locate)
             "a fragment that another file includes?",
             "point `urdf:` at the robot description that defines the link and its joints",
         )
-    joints = _joints(robot, locate)
+    joints = _joints(robot, links, locate)
     up_from_link = _chain(link, joints, locate)
     base = FOOTPRINT if FOOTPRINT in links else _root(link, up_from_link)
     up_from_base = _chain(base, joints, locate)
@@ -58,20 +59,45 @@ class _Joint:
     element: XmlElement
 
 
-def _joints(robot: XmlElement, locate: Locate) -> dict[str, _Joint]:
-    """Each child link's joint."""
-    joints = {}
+def _joints(robot: XmlElement, links: set[str | None], locate: Locate) -> dict[str, _Joint]:
+    """Each child link's joint; SpecError at a joint that names a link the robot does not
+    define, or gives a link a second parent (urdfdom refuses both; picking one would place
+    the laser on a guess)."""
+    joints: dict[str, _Joint] = {}
     for joint in robot.all("joint"):
-        parent, child = joint.child("parent"), joint.child("child")
-        if parent is None or child is None:
-            raise locate(joint).error(
-                f"joint {joint.get('name')!r} lacks <parent link> or <child link>",
-                'give every joint <parent link="..."/> and <child link="..."/>',
-            )
-        joints[child.get("link") or ""] = _Joint(
-            parent.get("link") or "", _origin(joint, locate), joint
+        parent, child = (
+            _link_of(joint, "parent", links, locate),
+            _link_of(joint, "child", links, locate),
         )
+        if child in joints:
+            first = joints[child].element
+            raise locate(joint).error(
+                f"link {child!r} has two parent joints: {first.get('name')!r} (line "
+                f"{locate(first).location.line}) and {joint.get('name')!r}",
+                "a URDF is a tree: give every link one parent joint, and remove the other",
+            )
+        joints[child] = _Joint(parent, _origin(joint, locate), joint)
     return joints
+
+
+def _link_of(joint: XmlElement, end: str, links: set[str | None], locate: Locate) -> str:
+    """The link a joint's <parent> or <child> names, which the robot must define."""
+    element = joint.child(end)
+    if element is None:
+        raise locate(joint).error(
+            f"joint {joint.get('name')!r} lacks <parent link> or <child link>",
+            'give every joint <parent link="..."/> and <child link="..."/>',
+        )
+    link = element.get("link") or ""
+    if link not in links:
+        raise locate(joint).error(
+            f"joint {joint.get('name')!r} names the {end} link {link!r}, which this "
+            "description does not define",
+            f'define <link name="{link}"/>, or correct the joint\'s <{end} link="...">; for a '
+            "fragment that another file completes, give the scanner's full `pose:` next to "
+            "`urdf:`",
+        )
+    return link
 
 
 def _origin(joint: XmlElement, locate: Locate) -> Pose3D:
@@ -151,5 +177,12 @@ def _numbers(element: XmlElement, text: str, count: int, locate: Locate) -> tupl
         raise locate(element).error(
             f"<{element.tag}> holds {text.strip()!r}, not {count} numbers",
             POSE_FIX if count == 6 else f"write {count} numbers separated by spaces",
+        )
+    if any(abs(number) > MAX_POSE_NUMBER for number in numbers):
+        # Frames composed from such numbers cancel to rounding noise, not to a mount.
+        raise locate(element).error(
+            f"<{element.tag}> holds {text.strip()!r}: a number beyond {MAX_POSE_NUMBER:g} "
+            "(m or rad), which no frame of a robot holds",
+            "write the pose in m and rad, relative to the parent frame",
         )
     return numbers

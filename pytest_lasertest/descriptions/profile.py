@@ -48,7 +48,7 @@ def read_profile(
 ) -> ReadProfile:
     """The laser of a description as the gate reads it (SpecError, GitError when it cannot)."""
     path = path.absolute()
-    reader = reader_at(ref, path.parent)
+    reader = reader_at(ref, path)
     lasers = read_lasers(DescriptionFile(path, reader, args, packages))
     where = SpecNode(sensor, Location(path, 1), "--sensor")
     laser = choose_laser(lasers, sensor, where, reader.name(path))

@@ -5,7 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from pytest_lasertest.descriptions.gitref import GitRevision, open_revision
+from pytest_lasertest.descriptions.files import UnreadableFile, read_regular_file
+from pytest_lasertest.descriptions.gitref import GitError, GitRevision, revision_holding
 from pytest_lasertest.inputs.errors import display_path
 
 
@@ -14,10 +15,9 @@ class WorkingTree:
     """Files as they are on disk."""
 
     def read(self, path: Path) -> bytes:
-        """The file's bytes; FileNotFoundError when it is missing or is a directory."""
-        if path.is_dir():
-            raise FileNotFoundError(2, f"{path} is a directory", str(path))
-        return path.read_bytes()
+        """The file's bytes; FileNotFoundError when it is missing, UnreadableFile when it is
+        not a regular file of at most MAX_FILE_BYTES or cannot be read."""
+        return read_regular_file(path)
 
     def name(self, path: Path) -> str:
         """The path as messages show it."""
@@ -32,10 +32,14 @@ class AtRevision:
     revision: GitRevision
 
     def read(self, path: Path) -> bytes:
-        """The file's bytes at the revision; FileNotFoundError when it has no such file."""
-        if self.revision.holds(path):
+        """The file's bytes at the revision; FileNotFoundError when it has no such file,
+        UnreadableFile when git cannot read it or it is too large."""
+        if not self.revision.holds(path):
+            return WorkingTree().read(path)
+        try:
             return self.revision.read(path)
-        return WorkingTree().read(path)
+        except GitError as error:
+            raise UnreadableFile(path, error.problem, error.fix) from None
 
     def name(self, path: Path) -> str:
         """The path, and the revision it is read at."""
@@ -44,7 +48,8 @@ class AtRevision:
         return display_path(path)
 
 
-def reader_at(ref: str | None, directory: Path) -> WorkingTree | AtRevision:
-    """The working tree, or revision `ref` of the repository holding `directory` (GitError when
-    there is no such revision)."""
-    return WorkingTree() if ref is None else AtRevision(open_revision(directory, ref))
+def reader_at(ref: str | None, path: Path) -> WorkingTree | AtRevision:
+    """The working tree, or revision `ref` of the git repository that holds the description
+    file `path` (absolute). GitError when there is no such revision, or the file lies in no
+    repository: a ref must never quietly read the working tree instead."""
+    return WorkingTree() if ref is None else AtRevision(revision_holding(path, ref))

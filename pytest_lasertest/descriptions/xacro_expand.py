@@ -1,14 +1,16 @@
 """Xacro files expanded with the `xacro` package, as `xacro FILE NAME:=VALUE` would.
 
-Two things differ from the command. Every file xacro opens (the top file, its includes, YAML it
-loads) is read through a `FileReader`, so a description at a git revision includes its files at
-that same revision; each XML file is first read by `parse_xml`, which refuses entity bombs and
-names the line of any syntax error. And `$(find PKG)` resolves through the `packages:` mapping
-the pairs file gives, not through a ROS installation, so the gate runs without ROS.
+Three things differ from the command. Every file xacro opens (the top file, its includes, YAML
+it loads) is read through a `FileReader`, so a description at a git revision includes its files
+at that same revision; each XML file is first read by `parse_xml`, which refuses entity bombs and
+names the line of any syntax error. `$(find PKG)` resolves through the `packages:` mapping the
+pairs file gives, not through a ROS installation, so the gate runs without ROS. And the expansion
+is bounded (`xacro_guard.py`): a runaway macro, include or block is an error at the line that
+calls it, not a hang.
 
-xacro keeps its state in module globals and opens files with the built-in `open`; `_patched`
-swaps both for the length of one expansion. That ties this module to xacro 2.1's internals, which
-is why pyproject pins xacro below 2.2.
+xacro keeps its state in module globals, opens files with the built-in `open` and edits its DOM
+through three module functions; `_patched` swaps them for the length of one expansion. That ties
+this module to xacro 2.1's internals, which is why pyproject pins xacro below 2.2.
 """
 
 from __future__ import annotations
@@ -21,9 +23,11 @@ import re
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Protocol
+from typing import IO, Any, Protocol
 from xml.sax.saxutils import quoteattr
 
+from pytest_lasertest.descriptions.files import UnreadableFile
+from pytest_lasertest.descriptions.xacro_guard import ExpansionGuard
 from pytest_lasertest.descriptions.xmlfile import XmlElement, parse_xml
 from pytest_lasertest.inputs.errors import Location, SpecError
 
@@ -69,51 +73,79 @@ def expand_xacro(
     import xacro
 
     opened: dict[Path, XmlElement | None] = {}
+    guard = ExpansionGuard(xacro, opened)
     try:
-        with _patched(xacro, _opener(reader, opened), _finder(packages)):
+        with _patched(xacro, guard, _opener(reader, opened, guard), _finder(packages)):
             document = xacro.process_file(str(path), mappings=dict(args))
+            text = document.toxml(encoding="utf-8")
     except SpecError:
         raise
+    except RecursionError:
+        raise guard.nested_too_deep() from None
     except Exception as error:  # noqa: BLE001  (xacro raises bare errors from user expressions)
         # xacro names no lines, but its stack says which file it was reading.
         reading = Path(os.path.abspath((xacro.filestack or [None])[-1] or path))
         raise _xacro_error(error, reading, opened, reader) from None
-    text = document.toxml(encoding="utf-8")
-    root = parse_xml(text, path)
+    root = parse_xml(text, path, located=_origin_of)
     return Expansion(root, opened)
 
 
 @contextlib.contextmanager
-def _patched(xacro: object, opener: object, finder: object) -> Iterator[None]:
-    """xacro's `open` and `$(find)` replaced, its include list emptied, for one expansion."""
+def _patched(xacro: Any, guard: ExpansionGuard, opener: object, finder: object) -> Iterator[None]:
+    """xacro's `open` and `$(find)` replaced, its macro calls and insertions guarded, its include
+    list emptied, for one expansion."""
     from xacro import substitution_args
 
-    saved_find = substitution_args._eval_find
-    xacro.all_includes = []  # type: ignore[attr-defined]
-    xacro.open = opener  # type: ignore[attr-defined]  # shadows the built-in inside xacro
+    names = ("handle_macro_call", "replace_node", "remove_previous_comments")
+    saved = substitution_args._eval_find, {name: getattr(xacro, name) for name in names}
+    xacro.all_includes = []
+    xacro.open = opener  # shadows the built-in inside xacro
     substitution_args._eval_find = finder
+    xacro.handle_macro_call = guard.macro_call(xacro.handle_macro_call)
+    xacro.replace_node = guard.replace_node
+    xacro.remove_previous_comments = guard.splicer.remove_previous_comments
     try:
         with contextlib.redirect_stderr(io.StringIO()):  # its warnings are not ours to print
             yield
     finally:
-        del xacro.open  # type: ignore[attr-defined]
-        substitution_args._eval_find = saved_find
+        del xacro.open
+        substitution_args._eval_find = saved[0]
+        for name, function in saved[1].items():
+            setattr(xacro, name, function)
 
 
-def _opener(reader: FileReader, opened: dict[Path, XmlElement | None]) -> object:
+def _opener(
+    reader: FileReader, opened: dict[Path, XmlElement | None], guard: ExpansionGuard
+) -> object:
     def open_for_xacro(name: str, mode: str = "r", *_: object, **__: object) -> IO[bytes]:
         if "r" not in mode:
             raise PermissionError(errno.EACCES, "expanding a description writes nothing", name)
         path = Path(os.path.abspath(name))
+        guard.check_include(path)
         data = reader.read(path)
-        # Only XML goes through the checks; a YAML file loaded by xacro.load_yaml does not.
-        if not _looks_like_xml(data):
+        # Every file xacro parses as XML goes through the checks, whatever its first bytes;
+        # a YAML file loaded by xacro.load_yaml does not.
+        if not guard.parsing(path):
             opened[path] = None
             return io.BytesIO(data)
+        data = _utf8(data)
         root = opened[path] = parse_xml(data, path)
+        guard.read_top(root)
         return io.BytesIO(_with_origins(data, root))
 
     return open_for_xacro
+
+
+def _utf8(data: bytes) -> bytes:
+    """A UTF-16 file as UTF-8, its declaration saying so: the origin marks are UTF-8 bytes."""
+    if not data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return data
+    try:
+        text = data.decode("utf-16")
+    except UnicodeDecodeError:
+        return data  # parse_xml says where it breaks
+    declared = re.sub(r"""^(\s*<\?xml[^>]*?encoding=["'])[^"']*""", r"\1UTF-8", text, count=1)
+    return declared.encode("utf-8")
 
 
 def _with_origins(data: bytes, root: XmlElement) -> bytes:
@@ -137,15 +169,16 @@ def _with_origins(data: bytes, root: XmlElement) -> bytes:
 
 def origin(element: XmlElement) -> Location | None:
     """Where the files xacro read write an element of its expansion, when they say."""
-    mark = element.get(ORIGIN)
+    return _origin_of(element.attributes)
+
+
+def _origin_of(attributes: Mapping[str, str]) -> Location | None:
+    """Where the files xacro read write an element with these attributes, when they say."""
+    mark = attributes.get(ORIGIN)
     if mark is None:
         return None
     path, _, line = mark.rpartition(":")
     return Location(Path(path), int(line))
-
-
-def _looks_like_xml(data: bytes) -> bool:
-    return data.lstrip(b"\xef\xbb\xbf \t\r\n")[:1] == b"<"
 
 
 def _finder(packages: Mapping[str, Path]) -> object:
@@ -183,12 +216,45 @@ def _xacro_error(
             f"it includes {reader.name(missing)}, which does not exist",
             "check the include's path, or map the package it lives in under `packages:`",
         )
-    message = " ".join(str(error).split())
+    if isinstance(cause, UnreadableFile):
+        return SpecError(
+            _where(here, opened, Path(cause.filename).name),
+            "",
+            f"it includes a file that cannot be used: {cause.problem}",
+            cause.fix,
+        )
+    message = _message(error)
+    unset = re.search(r"environment variable '([^']+)' is not set", message)
+    if unset:
+        return SpecError(
+            _where(here, opened, f"$(env {unset.group(1)})"),
+            "",
+            f"the description reads the environment variable {unset.group(1)} ($(env "
+            f"{unset.group(1)})), which is not set",
+            f"set {unset.group(1)} where the gate runs, or give it a default in the description "
+            f"with $(optenv {unset.group(1)} DEFAULT)",
+        )
     unknown = re.search(r"unknown macro name: (\S+)", message)
     needle = f"<{unknown.group(1)}" if unknown else _first_name(message)
     return SpecError(
         _where(here, opened, needle), "", f"xacro cannot expand it: {message}", XACRO_FIX
     )
+
+
+def _message(error: BaseException) -> str:
+    """xacro's message, each part once: it wraps a cause in an exception whose own text may
+    repeat the cause's (`$(env X)`'s names the cause's class, then its text, then the text again
+    from the cause)."""
+    parts: list[str] = []
+    suffixes: list[str] = []
+    seen = error
+    while (inner := getattr(seen, "exc", None)) is not None:
+        own = str(seen.args[0]) if seen.args and seen.args[0] is not None else ""
+        if own and str(inner) not in own:
+            parts.append(own)
+        suffixes.insert(0, str(getattr(seen, "suffix", None) or ""))
+        seen = inner
+    return " ".join(" ".join([*parts, str(seen), *suffixes]).split())
 
 
 def _root_cause(error: BaseException) -> BaseException:

@@ -37,7 +37,8 @@ class SpecError(Exception):
 
 def display_path(path: Path) -> str:
     """The path relative to the working directory when it lies below it, else as given."""
+    # os.path.realpath, not Path.resolve: it raises RuntimeError on a symbolic link loop.
     try:
-        return str(path.resolve().relative_to(Path.cwd().resolve()))
+        return str(Path(os.path.realpath(path)).relative_to(Path.cwd().resolve()))
     except ValueError:
         return os.fspath(path)

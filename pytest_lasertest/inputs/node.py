@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -74,22 +75,49 @@ class SpecNode:
     def number(self, unit: str) -> float:
         """This value as a finite real number in `unit`."""
         value = self.value
+        if isinstance(value, str):
+            raise self.error(*_text_for_number(value, unit))
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise self.error(
                 f"expected a number in {unit}, got {describe(value)}", f"write a number in {unit}"
             )
-        if not math.isfinite(value):
-            raise self.error(f"{value} is not a finite number", f"write a finite number in {unit}")
-        return float(value)
+        number = _as_float(value)
+        if isinstance(value, int) and not math.isfinite(number):
+            raise self.error(
+                f"{describe(value)} is too large for a number", f"write a number in {unit}"
+            )
+        if not math.isfinite(number):
+            raise self.error(
+                f"{describe(value)} is not a finite number",
+                f"write a finite number in {unit}: the gate takes no .inf or .nan",
+            )
+        return number
+
+    def number_in(self, bounds: Bounds) -> float:
+        """This value as a number within `bounds`, which say why values outside are refused."""
+        return bounds.check(self, self.number(bounds.unit))
 
     def whole_number(self) -> int:
         """This value as an integer."""
         value = self.value
+        if isinstance(value, str) and _LEADING_ZERO.fullmatch(value.strip()):
+            raise self.error(*_text_for_number(value, ""))
+        if isinstance(value, str) and _EXPONENT.fullmatch(value.strip()):
+            problem, _ = _text_for_number(value, "")
+            meant = float(value.replace("_", ""))
+            whole = f"{meant:.0f}" if abs(meant) < 1e15 and meant == round(meant) else None
+            raise self.error(problem, f"write {whole}" if whole else "write an integer, e.g. 720")
         if isinstance(value, bool) or not isinstance(value, int):
             raise self.error(
                 f"expected a whole number, got {describe(value)}", "write an integer, e.g. 720"
             )
         return value
+
+    def whole_number_in(self, bounds: Bounds) -> int:
+        """This value as an integer within `bounds`."""
+        number = self.whole_number()
+        bounds.check(self, number)
+        return number
 
     def vector(self, length: int, unit: str) -> tuple[float, ...]:
         """This value as a list of `length` finite numbers in `unit`."""
@@ -107,10 +135,120 @@ class SpecNode:
         return x, y, z
 
 
+@dataclass(frozen=True)
+class Bounds:
+    """The values a field accepts, and why the rest are refused: what a larger one would cost
+    (time, memory) or why it cannot be meant."""
+
+    low: float
+    high: float
+    unit: str
+    too_low: str  # why a value below `low` (or at it, when `above_low`) is refused
+    too_high: str  # why a value above `high` is refused
+    above_low: bool = False  # `low` itself is refused: a rate or a size must be above it
+
+    def check(self, node: SpecNode, value: float) -> float:
+        """`value`, as `node` wrote it, or a SpecError at `node` saying why it is refused."""
+        unit = f" {self.unit}" if self.unit else ""
+        if value < self.low or (self.above_low and value == self.low):
+            relation = "not above" if self.above_low else "below"
+            raise node.error(
+                f"{shown(value)}{unit} is {relation} {shown(self.low)}{unit}: {self.too_low}",
+                f"write a value {self.span()}",
+            )
+        if value > self.high:
+            raise node.error(
+                f"{shown(value)}{unit} is above {shown(self.high)}{unit}, the most the gate "
+                f"accepts: {self.too_high}",
+                f"write a value {self.span()}",
+            )
+        return value
+
+    def span(self) -> str:
+        """`from 1 to 100 Hz`, or `above 0 and at most 100 m`."""
+        unit = f" {self.unit}" if self.unit else ""
+        low, high = shown(self.low), shown(self.high)
+        if self.above_low:
+            return f"above {low} and at most {high}{unit}"
+        return f"from {low} to {high}{unit}"
+
+
+def shown(value: float) -> str:
+    """A number as a message shows it: whole numbers in full up to 15 digits, else as %g."""
+    if isinstance(value, int) and abs(value) >= 10**15:
+        return f"{str(value)[:4]}... ({len(str(abs(value)))} digits)"
+    if isinstance(value, int) or (
+        math.isfinite(value) and value == round(value) and abs(value) < 1e15
+    ):
+        return str(int(value))
+    return f"{value:g}"
+
+
+# YAML 1.1 reads 0720 as octal, 0789 as text.
+_LEADING_ZERO = re.compile(r"[-+]?0[0-9_]+")
+# A number YAML 1.1 reads as text: 1e6, 1.0e6 (its floats need a dot and a signed exponent).
+_EXPONENT = re.compile(r"[-+]?([0-9][0-9_]*(\.[0-9_]*)?|\.[0-9][0-9_]*)[eE][-+]?[0-9]+")
+# A number followed by its unit: 10 m, 50Hz.
+_WITH_UNIT = re.compile(r"([-+]?[0-9.]+(?:[eE][-+]?[0-9]+)?)\s*([A-Za-z/^0-9]+)")
+
+
+def _text_for_number(text: str, unit: str) -> tuple[str, str]:
+    """Why a text is not the number in `unit` it may look like, and the fix."""
+    written = text.strip()
+    if _EXPONENT.fullmatch(written):
+        return (
+            f"{written!r} was read as text: YAML 1.1 (PyYAML's) reads a number with an "
+            "exponent only with a dot and a signed exponent",
+            f"write {_yaml11_float(written)}",
+        )
+    if _LEADING_ZERO.fullmatch(written):
+        return (
+            f"{written!r} was read as text: YAML 1.1 takes an integer with a leading zero for "
+            "octal, and one with an 8 or 9 after it for text",
+            f"write it without the leading zero: {_without_leading_zeros(written)}",
+        )
+    if _WITH_UNIT.fullmatch(written):
+        return (
+            f"expected a number in {unit}, got the text {written!r}",
+            f"write a number in {unit}, without a unit (the field's unit is {unit})",
+        )
+    return f"expected a number in {unit}, got {describe(text)}", f"write a number in {unit}"
+
+
+def _without_leading_zeros(text: str) -> str:
+    """`-0789` as `-789`."""
+    sign = text[0] if text[0] in "+-" else ""
+    return sign + (text.lstrip("+-").replace("_", "").lstrip("0") or "0")
+
+
+def _yaml11_float(text: str) -> str:
+    """`1e6` and `1.0e6` as YAML 1.1 reads them as numbers: `1.0e+6`."""
+    mantissa, exponent = re.split("[eE]", text.replace("_", ""))
+    if "." not in mantissa:
+        mantissa += ".0"
+    elif mantissa.endswith("."):
+        mantissa += "0"
+    if mantissa.lstrip("+-").startswith("."):
+        mantissa = mantissa.replace(".", "0.", 1)
+    if exponent[0] not in "+-":
+        exponent = f"+{exponent}"
+    return f"{mantissa}e{exponent}"
+
+
+def _as_float(value: int | float) -> float:
+    """The value as a float; an integer too large for one becomes infinity."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf
+
+
 def describe(value: object) -> str:
     """How a YAML value reads to the user, for 'expected X, got Y'."""
     if value is None:
         return "nothing (null)"
+    if isinstance(value, int) and not isinstance(value, bool):
+        return shown(value)
     if isinstance(value, bool):
         return f"{str(value).lower()} (a yes/no value)"
     if isinstance(value, str):

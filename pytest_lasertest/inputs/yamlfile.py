@@ -10,6 +10,11 @@ from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 from pytest_lasertest.inputs.errors import Location, SpecError
 
 _MERGE_TAG = "tag:yaml.org,2002:merge"
+# The files read here (pairs files, robots, navigation parameters, catalogue models) are a page
+# or two. Beyond these, a file is not one of them, and parsing it would take long or recurse
+# past Python's stack.
+MAX_BYTES = 1_000_000  # about 20,000 lines
+MAX_DEPTH = 50  # mappings and lists nested in each other; a pairs file needs about 6
 
 
 class YamlMap(dict[str, object]):
@@ -37,6 +42,23 @@ class _LocatingLoader(yaml.SafeLoader):
         super().__init__(text)
         self.path = path
         self.field_path: list[str] = []
+        self.depth = 0  # how many nodes deep the composer is
+
+    def compose_node(self, parent: Node | None, index: int) -> Node | None:
+        """Compose one node, refusing nesting deeper than MAX_DEPTH where it begins."""
+        self.depth += 1
+        try:
+            if self.depth > MAX_DEPTH:
+                line = self.get_mark().line + 1  # where the reader is: the deepest node begins
+                raise SpecError(
+                    Location(self.path, line),
+                    "",
+                    f"mappings and lists are nested more than {MAX_DEPTH} deep here",
+                    "no file the gate reads nests that deep; check the brackets around this line",
+                )
+            return super().compose_node(parent, index)
+        finally:
+            self.depth -= 1
 
     def located(self, node: Node) -> Location:
         return Location(self.path, node.start_mark.line + 1)
@@ -93,12 +115,67 @@ def _construct_list(loader: _LocatingLoader, node: SequenceNode) -> YamlList:
     return result
 
 
+def _construct_int(loader: _LocatingLoader, node: ScalarNode) -> int:
+    _refuse_surprising_number(loader, node)
+    value: int = loader.construct_yaml_int(node)
+    return value
+
+
+def _construct_float(loader: _LocatingLoader, node: ScalarNode) -> float:
+    _refuse_surprising_number(loader, node)
+    value: float = loader.construct_yaml_float(node)
+    return value
+
+
+def _refuse_surprising_number(loader: _LocatingLoader, node: ScalarNode) -> None:
+    """YAML 1.1 (PyYAML's) reads `0720` as octal 464 and `1:30` as base 60, 90: numbers nobody
+    writes on purpose in these files, which would be used silently as something else."""
+    digits = node.value.replace("_", "").lstrip("+-")
+    if ":" in digits:
+        value = _read_as(loader, node, digits)
+        raise SpecError(
+            loader.located(node),
+            loader.field_name(),
+            f"YAML 1.1 reads {node.value} as the base-60 (sexagesimal) number {value}",
+            f"write the number you mean as plain digits ({value} if that is it), "
+            "or quote it if it is text",
+        )
+    if len(digits) > 1 and digits[0] == "0" and digits.isdigit():
+        sign = node.value[0] if node.value[0] in "+-" else ""
+        raise SpecError(
+            loader.located(node),
+            loader.field_name(),
+            f"YAML 1.1 reads {node.value}, with its leading zero, as the octal number "
+            f"{_read_as(loader, node, digits)}",
+            f"write it without the leading zero: {sign}{digits.lstrip('0') or 0}",
+        )
+
+
+def _read_as(loader: _LocatingLoader, node: ScalarNode, digits: str) -> int | float:
+    """What PyYAML makes of the scalar."""
+    value: int | float = (
+        loader.construct_yaml_float(node) if "." in digits else loader.construct_yaml_int(node)
+    )
+    return value
+
+
 _LocatingLoader.add_constructor("tag:yaml.org,2002:map", _construct_map)
 _LocatingLoader.add_constructor("tag:yaml.org,2002:seq", _construct_list)
+_LocatingLoader.add_constructor("tag:yaml.org,2002:int", _construct_int)
+_LocatingLoader.add_constructor("tag:yaml.org,2002:float", _construct_float)
 
 
 def load_yaml(path: Path) -> object:
     """Parse one YAML file into YamlMap, YamlList and scalars; None when it holds nothing."""
+    size = _size(path)
+    if size > MAX_BYTES:
+        raise SpecError(
+            Location(path, 1),
+            "",
+            f"the file holds {size:,} bytes, more than the {MAX_BYTES:,} any file the gate "
+            "reads as YAML needs",
+            "check that this is the file you meant: a pairs, robot, navigation or scanner file",
+        )
     text = read_text(path)
     loader = _LocatingLoader(text, path)
     try:
@@ -126,6 +203,14 @@ def _syntax_error(path: Path, error: yaml.MarkedYAMLError) -> SpecError:
         problem,
         f"check the indentation (spaces, not tabs) and the quoting around line {line}",
     )
+
+
+def _size(path: Path) -> int:
+    """The file's size in bytes; 0 when it cannot be read, as read_text then says why."""
+    try:
+        return path.stat().st_size
+    except OSError:
+        return 0
 
 
 def read_text(path: Path) -> str:

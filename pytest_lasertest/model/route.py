@@ -131,28 +131,37 @@ def nominal_path(
     return NominalPath(start, tuple(segments), speed, turn_rate)
 
 
+# A run that cruises within this share of the nominal speed keeps it: its speed varies that much
+# along a leg anyway (DWA samples a few speeds), and timing each leg by its middle absorbs it.
+SPEED_TOLERANCE = 0.1
+
+
 def timed_to(path: NominalPath, times: FloatArray, poses: FloatArray) -> NominalPath:
     """The path with the clock of a run along it: times (T,) s and poses (T, 3) [x, y, yaw] of a
-    robot driving it. Each leg begins when the run's crossing of its middle says it did, at the
-    path's speed, and each turn ends as its leg begins; where the legs and turns lie is
-    unchanged. A leg the run never got half way along keeps its nominal time, as late as the
-    last timed leg.
+    robot driving it. A run that cruised further than SPEED_TOLERANCE from the nominal speed
+    (its controller's limits, or a controller of the team's own) gives the path its speed;
+    each leg begins when the run's crossing of its middle says it did, at that speed, and each
+    turn ends as its leg begins; where the legs and turns lie is unchanged. A leg the run never
+    got half way along keeps its time at that speed, as late as the last timed leg.
     """
+    crossings = _crossings(path, times, poses)
+    cruised = _cruising_speed(path, crossings)
+    speed = path.speed
+    if cruised is not None and abs(cruised / path.speed - 1.0) > SPEED_TOLERANCE:
+        # A run that crawled along a short leg and got no further must not stretch the rest of
+        # the path far beyond the run: the solver judges the path scan by scan.
+        speed = max(cruised, sum(leg.length for leg in path.legs()) / float(times[-1]))
+    path = at_speed(path, speed)
     retimed: list[Leg | Turn] = []
     clock, delay = 0.0, 0.0  # s: the end of the last leg; how late it began
     turn: Turn | None = None
-    finished: float | None = 0.0  # s: when the run got to the end of the last leg, if it did
+    legs = iter(crossings)
     for segment in path.segments:
         if isinstance(segment, Turn):
             turn = segment
             continue
         turning = abs(turn.angle) / path.turn_rate if turn else 0.0
-        middle = None
-        if finished is not None:
-            # Only what the run did after the last leg counts: a route may come back on itself.
-            run = times[times >= finished], poses[times >= finished]
-            middle = _crossing_time(segment, segment.length / 2.0, *run)
-            finished = _crossing_time(segment, segment.length, *run)
+        middle = next(legs)[1]
         wanted = segment.begins + delay
         if middle is not None:
             wanted = middle - segment.length / 2.0 / path.speed
@@ -162,6 +171,54 @@ def timed_to(path: NominalPath, times: FloatArray, poses: FloatArray) -> Nominal
         retimed.append(dataclasses.replace(segment, begins=begins))
         clock, delay, turn = begins + segment.length / path.speed, begins - segment.begins, None
     return NominalPath(path.start, tuple(retimed), path.speed, path.turn_rate)
+
+
+def at_speed(path: NominalPath, speed: float) -> NominalPath:
+    """The same legs and turns, the legs driven at `speed` m/s, each part right after the last."""
+    if speed == path.speed:
+        return path
+    segments: list[Leg | Turn] = []
+    clock = 0.0  # s
+    for segment in path.segments:
+        segments.append(dataclasses.replace(segment, begins=clock))
+        if isinstance(segment, Leg):
+            clock += segment.length / speed
+        else:
+            clock += abs(segment.angle) / path.turn_rate
+    return NominalPath(path.start, tuple(segments), speed, path.turn_rate)
+
+
+# The run's cruising speed on a leg is timed between these shares of its length, away from where
+# it speeds up and slows down; its crossing of the middle times the leg.
+_MARKS = (0.25, 0.5, 0.75)
+Crossings = tuple[float | None, float | None, float | None]
+
+
+def _crossings(path: NominalPath, times: FloatArray, poses: FloatArray) -> list[Crossings]:
+    """When the run first got a quarter, half and three quarters along each leg (s), counting
+    only what it did after it got to the end of the leg before; None where it never did."""
+    result: list[Crossings] = []
+    finished: float | None = 0.0  # s: when the run got to the end of the last leg, if it did
+    for leg in path.legs():
+        if finished is None:
+            result.append((None, None, None))
+            continue
+        # Only what the run did after the last leg counts: a route may come back on itself.
+        run = times[times >= finished], poses[times >= finished]
+        quarter, middle, three = (_crossing_time(leg, share * leg.length, *run) for share in _MARKS)
+        result.append((quarter, middle, three))
+        finished = _crossing_time(leg, leg.length, *run)
+    return result
+
+
+def _cruising_speed(path: NominalPath, crossings: list[Crossings]) -> float | None:
+    """The run's mean speed over the middle halves of the legs it drove through (m/s); None
+    when it drove through none."""
+    length, duration = 0.0, 0.0  # m, s
+    for leg, (quarter, _, three) in zip(path.legs(), crossings, strict=True):
+        if quarter is not None and three is not None and three > quarter:
+            length, duration = length + leg.length / 2.0, duration + three - quarter
+    return length / duration if duration > 0.0 else None
 
 
 def _crossing_time(leg: Leg, distance: float, times: FloatArray, poses: FloatArray) -> float | None:
@@ -196,12 +253,19 @@ def swept_polygons(
     """Convex polygons, each shape (V, 2), whose union holds every footprint of [begin, end] s.
 
     A straight stretch sweeps the convex hull of its first and last footprints; a turn in place is
-    taken to sweep the regular polygon around the disc its footprint turns in.
+    taken to sweep the regular polygon around the disc its footprint turns in. Where a path timed
+    to a run waits (the run set off late, or took longer to turn), the robot stands, and its
+    footprint there is a piece of its own.
     """
     radius = float(np.max(np.hypot(footprint[:, 0], footprint[:, 1])))
     pieces: list[FloatArray] = []
+    clock = 0.0  # s, when the part before ended
     for segment in path.segments:
-        first, last = max(begin, segment.begins), min(end, path.end_of(segment))
+        if clock < segment.begins and max(begin, clock) <= min(end, segment.begins):
+            standing = path.poses_at(np.array([segment.begins]))[0]
+            pieces.append(place(footprint, standing))
+        clock = path.end_of(segment)
+        first, last = max(begin, segment.begins), min(end, clock)
         if first > last or (first == last and segment.begins != first):
             continue
         if isinstance(segment, Turn):
@@ -216,11 +280,17 @@ def contact_times(path: NominalPath, footprint: FloatArray, points: FloatArray) 
     """When the footprint first covers each point, shape (P, 2) -> (P,) s; inf if never.
 
     As `swept_polygons` has it: a leg covers a point once the footprint's front edge at the
-    point's lateral offset reaches it, a turn covers its whole disc from the moment it begins.
+    point's lateral offset reaches it, a turn covers its whole disc from the moment it begins,
+    and the footprint where the robot waits covers what it holds from the moment the wait begins.
     """
     times = np.full(len(points), np.inf)
     radius = float(np.max(np.hypot(footprint[:, 0], footprint[:, 1])))
+    clock = 0.0  # s, when the part before ended
     for segment in path.segments:
+        if clock < segment.begins:
+            standing = place(footprint, path.poses_at(np.array([segment.begins]))[0])
+            times = np.where(_inside(standing, points), np.minimum(times, clock), times)
+        clock = path.end_of(segment)
         if isinstance(segment, Turn):
             inside = _inside(_turn_polygon(segment.at, radius), points)
             times = np.where(inside, np.minimum(times, segment.begins), times)

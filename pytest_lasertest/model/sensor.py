@@ -14,21 +14,15 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from pytest_lasertest.model.geometry import FULL_TURN, FloatArray, IntArray, Pose3D, wrap_angles
-
-# Gazebo descriptions write a full turn as 6.28319, a little more than 2 pi.
-FULL_TURN_SLACK = 1e-4  # rad
-# The gate models a horizontal scan plane; Husky descriptions write roll = 3.14159, not pi.
-MAX_TILT = 1e-3  # rad
-
-
-class ProfileError(ValueError):
-    """A profile field has a value no scanner can have."""
-
-    def __init__(self, field: str, problem: str, fix: str) -> None:
-        super().__init__(f"{field}: {problem} ({fix})")
-        self.field = field
-        self.problem = problem
-        self.fix = fix
+from pytest_lasertest.model.scanner_limits import ProfileError as ProfileError  # re-exported
+from pytest_lasertest.model.scanner_limits import (
+    check_angles,
+    check_beams,
+    check_mount,
+    check_noise,
+    check_ranges,
+    check_rate,
+)
 
 
 @dataclass(frozen=True)
@@ -69,9 +63,13 @@ class LaserProfile:
 
     def __post_init__(self) -> None:
         _check_finite(self)
-        _check_beams(self)
-        _check_ranges(self)
-        _check_mount(self.pose)
+        check_beams(self.samples, self.resolution)
+        check_angles(self.min_angle, self.max_angle)
+        check_ranges(self.range_min, self.range_max, self.range_resolution)
+        check_rate(self.update_rate)
+        if self.noise is not None:
+            check_noise(self.noise.mean, self.noise.stddev, self.range_min, self.range_max)
+        check_mount(self.pose)
 
     @property
     def beam_count(self) -> int:
@@ -240,71 +238,6 @@ def _check_finite(profile: LaserProfile) -> None:
             raise ProfileError(
                 name, "holds a value that is not a finite number", "write real numbers"
             )
-
-
-def _check_beams(profile: LaserProfile) -> None:
-    if profile.samples < 1:
-        raise ProfileError(
-            "samples", f"{profile.samples} beams cannot scan", "set samples to at least 1, e.g. 720"
-        )
-    if profile.resolution <= 0:
-        raise ProfileError(
-            "resolution", f"{profile.resolution} must be positive", "leave it out (default 1)"
-        )
-    count = profile.samples * profile.resolution
-    if count < 1 or abs(count - round(count)) > 1e-9 * count:
-        raise ProfileError(
-            "resolution",
-            f"samples x resolution = {count:g} is not a whole number of beams",
-            "choose samples and resolution whose product is a whole number",
-        )
-    if profile.min_angle >= profile.max_angle:
-        raise ProfileError(
-            "min_angle",
-            f"min_angle ({profile.min_angle} rad) must be less than max_angle "
-            f"({profile.max_angle} rad)",
-            "swap them or correct one; angles are counter-clockwise, in radians",
-        )
-    field_of_view = profile.max_angle - profile.min_angle
-    if field_of_view > FULL_TURN + FULL_TURN_SLACK:
-        raise ProfileError(
-            "max_angle",
-            f"the field of view {field_of_view:.4f} rad exceeds a full turn",
-            "keep max_angle - min_angle within 2 pi (6.2832 rad)",
-        )
-
-
-def _check_ranges(profile: LaserProfile) -> None:
-    if profile.range_min < 0:
-        raise ProfileError("range.min", f"{profile.range_min} m is negative", "use 0 or more")
-    if profile.range_max <= profile.range_min:
-        raise ProfileError(
-            "range.max",
-            f"range.max ({profile.range_max} m) must be greater than range.min "
-            f"({profile.range_min} m)",
-            "raise range.max or lower range.min",
-        )
-    if profile.range_resolution < 0:
-        raise ProfileError(
-            "range.resolution", f"{profile.range_resolution} m is negative", "use 0 or more"
-        )
-    if profile.update_rate <= 0:
-        raise ProfileError(
-            "update_rate",
-            f"{profile.update_rate} Hz: a scanner must publish scans at a positive rate",
-            "set the scan rate in Hz, e.g. 50",
-        )
-    if profile.noise is not None and profile.noise.stddev < 0:
-        raise ProfileError("noise.stddev", f"{profile.noise.stddev} m is negative", "use 0 or more")
-
-
-def _check_mount(pose: Pose3D) -> None:
-    if pose.tilt() > MAX_TILT:
-        raise ProfileError(
-            "pose.rpy",
-            f"the scan plane is tilted by {pose.tilt():.3f} rad; the gate models horizontal scans",
-            "mount the scanner level: pitch 0 and roll 0 (or pi when upside down)",
-        )
 
 
 def _gazebo_name(attribute: str) -> str:

@@ -2,7 +2,10 @@
 
 A scenario makes one controller per run (`ControllerFactory`) and calls `observe` with each scan
 at the scanner's update rate; the command it returns holds until the next scan, as a ROS node's
-cmd_vel holds until the next message.
+cmd_vel holds until the next message. The simulator holds a controller to this (`sim/guard.py`):
+a command is two finite numbers (a tuple, a list or a numpy array of two), and a controller that
+raises, answers anything else, or takes more wall-clock time than 5 s plus the simulated time
+driven, fails the drive.
 """
 
 from __future__ import annotations
@@ -74,7 +77,9 @@ class Controller(Protocol):
     """A robot's navigation: a velocity command for each scan."""
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
-        """The forward speed (m/s) and turn rate (rad/s) to drive at until the next scan."""
+        """The forward speed (m/s) and turn rate (rad/s) to drive at until the next scan:
+        finite numbers (the robot's velocity limits cut larger ones; NaN and infinity fail the
+        drive, as the Husky's diff_drive_controller ignores them)."""
         ...
 
 

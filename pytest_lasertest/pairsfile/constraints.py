@@ -27,6 +27,12 @@ VARIABLES = {
 CONSTANTS = {"pi": math.pi}
 FUNCTIONS = ("abs", "min", "max")
 MAX_LENGTH = 500  # characters; a placement constraint is a line, not a program
+# Every constraint goes into every solver query of the pairs file.
+MAX_CONSTRAINTS = 100
+# The solver reasons about metres and radians near the route: a number beyond this is a typo,
+# and one smaller than this (but not zero) is below anything it can tell apart.
+MAX_NUMBER = 1e6
+MIN_NUMBER = 1e-6
 
 ArithmeticOperator = Literal["+", "-", "*", "/"]
 ComparisonOperator = Literal["<", "<=", ">", ">=", "==", "!="]
@@ -117,7 +123,14 @@ class _Refused(Exception):
 
 def read_constraints(node: SpecNode) -> tuple[Constraint, ...]:
     """Every constraint of a `constraints:` list."""
-    return tuple(read_constraint(item) for item in node.items(what="constraints"))
+    items = node.items(what="constraints")
+    if len(items) > MAX_CONSTRAINTS:
+        raise node.error(
+            f"{len(items)} constraints are more than the {MAX_CONSTRAINTS} the gate accepts: "
+            "every one goes into every solver query",
+            "join conditions with `and` in fewer constraints",
+        )
+    return tuple(read_constraint(item) for item in items)
 
 
 def read_constraint(node: SpecNode) -> Constraint:
@@ -201,6 +214,12 @@ def _number(value: object) -> Number:
         number = math.inf
     if not math.isfinite(number):
         raise _Refused(f"{str(value)[:20]} is not a finite number", "write a finite number")
+    if abs(number) > MAX_NUMBER or 0.0 < abs(number) < MIN_NUMBER:
+        raise _Refused(
+            f"{number:g} is outside what the solver tells apart: the variables are metres and "
+            f"radians near the route, and numbers run from {MIN_NUMBER:g} to {MAX_NUMBER:g}",
+            f"write a number of at most {MAX_NUMBER:g} and at least {MIN_NUMBER:g} (or 0)",
+        )
     return Number(number)
 
 

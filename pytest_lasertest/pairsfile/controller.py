@@ -16,7 +16,8 @@ import importlib.metadata
 import inspect
 import re
 import sys
-from collections.abc import Iterator
+import sysconfig
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
@@ -34,6 +35,7 @@ _REFERENCE = re.compile(rf"(?P<module>{_NAME}):(?P<attribute>{_NAME})\Z")
 _FACTORY = (
     "a callable that takes (robot, route) and returns an object with observe(scan, odometry, time)"
 )
+_COMMAND = "(forward speed m/s, turn rate rad/s)"
 
 
 @dataclass(frozen=True)
@@ -203,22 +205,83 @@ def _raised(node: SpecNode, name: str, error: BaseException) -> SpecError:
 
 
 def _factory(node: SpecNode, target: object, label: str) -> ControllerFactory:
-    """`target`, checked to be callable with (robot, route)."""
+    """`target`, checked to be callable with (robot, route), not from Python's standard library,
+    and, if it is a class, to have an `observe` callable with (scan, odometry, time). What
+    cannot be checked here (what a function returns) the first drive checks."""
     if not callable(target):
         raise node.error(f"{label} is {_kind(target)}, not a callable", f"name {_FACTORY}")
-    try:
-        signature = inspect.signature(target)
-    except (TypeError, ValueError):
-        # Some callables (builtins, extension types) have no signature to check: the first
-        # run calls it and says what is wrong.
-        return cast(ControllerFactory, target)
-    try:
-        signature.bind(None, ())
-    except TypeError as error:
+    library = _standard_library(target)
+    if library is not None:
         raise node.error(
-            f"{label} cannot be called with (robot, route): {error}", f"name {_FACTORY}"
-        ) from None
+            f"{label} comes from Python's standard library (module {library!r}), which makes "
+            "no controller",
+            f"name a factory of your own: {_FACTORY}",
+        )
+    _check_call(node, target, label, "(robot, route)", (None, ()), f"name {_FACTORY}")
+    if inspect.isclass(target):
+        _check_observe(node, target, label)
     return cast(ControllerFactory, target)
+
+
+def _check_call(
+    node: SpecNode, target: object, label: str, shown: str, arguments: tuple[object, ...], fix: str
+) -> None:
+    """An error if `target`'s signature cannot take these positional arguments."""
+    try:
+        signature = inspect.signature(cast(Callable[..., object], target))
+    except (TypeError, ValueError):
+        # Some callables (extension types, C++ bindings) have no signature to check: the first
+        # drive calls it and says what is wrong.
+        return
+    try:
+        signature.bind(*arguments)
+    except TypeError as error:
+        raise node.error(f"{label} cannot be called with {shown}: {error}", fix) from None
+
+
+def _check_observe(node: SpecNode, factory: type, label: str) -> None:
+    """An error if the class's objects have no `observe(scan, odometry, time)`."""
+    fix = f"define observe(self, scan, odometry, time) on the class, answering {_COMMAND}"
+    if inspect.getattr_static(factory, "observe", None) is None:
+        if inspect.getattr_static(factory, "__getattr__", None) is not None:
+            return  # its objects may make one up: the first drive looks
+        raise node.error(f"{label} is a class without an observe method", fix)
+    observe = getattr(factory, "observe")  # noqa: B009  (found statically, now bound as used)
+    if not callable(observe):
+        raise node.error(f"{label}.observe is {_kind(observe)}, not a method", fix)
+    # A function on the class is called with the object first; a static or class method,
+    # or a callable object, without it.
+    unbound = inspect.isfunction(inspect.getattr_static(factory, "observe"))
+    arguments = (None, None, None, 0.0) if unbound else (None, None, 0.0)
+    _check_call(node, observe, f"{label}.observe", "(scan, odometry, time)", arguments, fix)
+
+
+def _standard_library(target: object) -> str | None:
+    """The standard-library module that defines the function or class `target`, if one does:
+    none of them makes a controller (`builtins:print`, `os.path:join`, `subprocess:Popen`)."""
+    if not (inspect.isroutine(target) or inspect.isclass(target)):
+        return None  # an object made from a library class (a functools.partial) is the user's
+    name = getattr(target, "__module__", None)
+    module = sys.modules.get(name) if isinstance(name, str) else None
+    if module is None:
+        return None
+    if module.__name__ in sys.builtin_module_names:
+        return module.__name__
+    file = getattr(module, "__file__", None)
+    return module.__name__ if file is not None and _in_standard_library(Path(file)) else None
+
+
+def _in_standard_library(path: Path) -> bool:
+    """Whether the file is in Python's own library, not in a site-packages directory."""
+    path = path.resolve()
+    paths = sysconfig.get_paths()
+    library = {Path(paths[key]).resolve() for key in ("stdlib", "platstdlib")}
+    installed = {Path(paths[key]).resolve() for key in ("purelib", "platlib")}
+    if not any(path.is_relative_to(root) for root in library):
+        return False
+    # A system Python may keep its site-packages inside its library directory.
+    packages = {"site-packages", "dist-packages"}.intersection(path.parts)
+    return not packages and not any(path.is_relative_to(root) for root in installed)
 
 
 def _attribute_hint(missing: str, target: object) -> str:

@@ -39,9 +39,10 @@ def read_described(node: SpecNode, fields: dict[str, SpecNode]) -> DescribedLase
     as overrides. An error in the description names the description's line, then this one."""
     file_node = _file_node(node, fields)
     here = node.location.path.parent
-    reader = _reader(fields.pop("ref", None), here)
+    path = _path(file_node, here, what="a description file")
+    reader = _reader(fields.pop("ref", None), path)
     description = DescriptionFile(
-        path=Path(os.path.abspath(here / file_node.text(what="a description file"))),
+        path=path,
         reader=reader,
         args=_args(fields.pop("args", None)),
         packages=_packages(fields.pop("packages", None), here),
@@ -75,13 +76,14 @@ def _file_node(node: SpecNode, fields: dict[str, SpecNode]) -> SpecNode:
     return fields.pop("urdf") if "urdf" in fields else fields.pop("sdf")
 
 
-def _reader(ref: SpecNode | None, here: Path) -> FileReader:
+def _reader(ref: SpecNode | None, path: Path) -> FileReader:
+    """Where the description at `path` is read: at `ref` of the repository that holds it."""
     if ref is None:
         return WorkingTree()
     # A ref YAML reads as a number (a short commit id such as 1234567) is still a ref.
     text = str(ref.value) if isinstance(ref.value, int) else ref.text(what="a git ref")
     try:
-        return reader_at(text, here)
+        return reader_at(text, path)
     except GitError as error:
         raise ref.error(error.problem, error.fix) from None
 
@@ -109,9 +111,20 @@ def _packages(node: SpecNode | None, here: Path) -> dict[str, Path]:
     if node is None:
         return {}
     return {
-        name: Path(os.path.abspath(here / value.text(what="a package directory")))
+        name: _path(value, here, what="a package directory")
         for name, value in node.entries(what="packages, NAME: DIRECTORY").items()
     }
+
+
+def _path(node: SpecNode, here: Path, *, what: str) -> Path:
+    """A path the pairs file writes, relative to its directory."""
+    text = node.text(what=what)
+    if "\x00" in text:
+        raise node.error(
+            f"the path {text!r} holds a NUL character, which no file name can hold",
+            "write the path as it is on disk",
+        )
+    return Path(os.path.abspath(here / text))
 
 
 def _in_context(error: SpecError, file_node: SpecNode) -> SpecError:

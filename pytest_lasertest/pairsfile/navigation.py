@@ -10,8 +10,14 @@ with ROS's parameter names:
 
 from __future__ import annotations
 
-from pytest_lasertest.inputs.node import SpecNode, read_root
-from pytest_lasertest.nav.move_base.settings import Parameter, parameter_types
+from pytest_lasertest.inputs.node import Bounds, SpecNode, read_root
+from pytest_lasertest.nav.move_base.settings import (
+    LIMITS,
+    NavigationSettings,
+    Parameter,
+    clashes,
+    parameter_types,
+)
 
 # A speed that may be negative: DWA's least forward speed reverses below zero.
 MAY_BE_NEGATIVE = frozenset({"min_vel_x"})
@@ -35,16 +41,22 @@ MUST_BE_POSITIVE = frozenset(
 )
 
 
-def read_navigation(node: SpecNode) -> tuple[Parameter, ...]:
-    """The parameters a `navigation:` mapping sets, each checked against its section."""
+def read_navigation(node: SpecNode, under: tuple[Parameter, ...] = ()) -> tuple[Parameter, ...]:
+    """The parameters a `navigation:` mapping sets, each checked against its section and its
+    limits, and all of them, set over `under` (the robot's), checked together."""
     types = parameter_types()
     sections = node.mapping(types, what="navigation sections")
-    parameters: list[Parameter] = []
+    read: list[tuple[Parameter, SpecNode]] = []
     for section, values in sections.items():
         known = types[section]
         for name, value in values.mapping(known, what=f"{section} parameters").items():
-            parameters.append((section, name, _value(value, known[name])))
-    return tuple(parameters)
+            read.append(((section, name, _value(value, known[name], section)), value))
+    parameters = tuple(parameter for parameter, _ in read)
+    for clash in clashes(NavigationSettings.from_parameters(under + parameters)):
+        # The last of the clashing parameters this mapping sets; the robot's were checked alone.
+        culprits = [child for (section, name, _), child in read if (section, name) in clash.names]
+        raise (culprits[-1] if culprits else node).error(clash.problem, clash.fix)
+    return parameters
 
 
 def load_navigation_file(node: SpecNode) -> tuple[Parameter, ...]:
@@ -60,7 +72,7 @@ def load_navigation_file(node: SpecNode) -> tuple[Parameter, ...]:
     )
 
 
-def _value(node: SpecNode, kind: type) -> float | bool:
+def _value(node: SpecNode, kind: type, section: str) -> float | bool:
     """One parameter's value, of its type and in its range."""
     name = node.field.rsplit(".", 1)[-1]
     if kind is bool:
@@ -74,4 +86,7 @@ def _value(node: SpecNode, kind: type) -> float | bool:
         raise node.error(f"{name} must be above zero, not {value}", f"write a positive {name}")
     if name not in MAY_BE_NEGATIVE and value < 0:
         raise node.error(f"{name} cannot be negative ({value})", "write zero or more")
+    limit = LIMITS[section][name]
+    bounds = Bounds(limit.low, limit.high, limit.unit, limit.below, limit.why)
+    bounds.check(node, value)
     return value

@@ -10,10 +10,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from pytest_lasertest.inputs.errors import Location, SpecError
-from pytest_lasertest.inputs.node import SpecNode, read_root
+from pytest_lasertest.inputs.node import Bounds, SpecNode, read_root
 from pytest_lasertest.inputs.profile import build_profile
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.model.route import nominal_path
 from pytest_lasertest.pairsfile.catalogue import Catalogue, load_catalogue
 from pytest_lasertest.pairsfile.constraints import Constraint, read_constraints
 from pytest_lasertest.pairsfile.controller import ControllerChoice, read_controller
@@ -28,8 +29,21 @@ SECTIONS = ("robot", "world", "settings", "constraints", "controller", "navigati
 REQUIRED_SECTIONS = ("robot", "world", "pairs")
 SETTINGS_KEYS = ("min_obstacle_size", "max_obstacle_size", "witnesses")
 PAIR_KEYS = ("baseline", "candidate", "placements")
-# Pair names become part of test ids (`file::NAME[...]`), which `::`, `[` and spaces would break.
+# Each witness is a test item of its own, with a solver search and a round of driving.
 MAX_WITNESSES = 20
+# Scans of one scanner along the route (a run, or the path the solver plans along): each is ray
+# cast and checked. 50 Hz for an hour is 180,000.
+MAX_SCANS = 2_000_000
+# The verifier wants a beam 5 mm inside an obstacle (REQUIRED_MARGIN), so a thinner one than
+# this can never be confirmed; a wider one than the largest is a wall, not an obstacle.
+OBSTACLE_SIZE = Bounds(
+    0.01,
+    10.0,
+    "m",
+    "the verifier confirms a reading only 5 mm inside an obstacle, so a thinner one is never read",
+    "an obstacle that wide is a wall, and the solver searches sizes up to it",
+)
+# Pair names become part of test ids (`file::NAME[...]`), which `::`, `[` and spaces would break.
 PAIR_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*\Z")
 
 
@@ -89,17 +103,45 @@ def load_pairs_file(path: Path) -> PairsFile:
     robot = read_robot(sections["robot"])
     if "navigation" in sections:
         # The file's own parameters come after the robot's, and so win.
-        overrides = read_navigation(sections["navigation"])
+        overrides = read_navigation(sections["navigation"], robot.navigation)
         robot = dataclasses.replace(robot, navigation=robot.navigation + overrides)
+    world = read_world(sections["world"], robot)
+    pairs = _read_pairs(sections["pairs"], load_catalogue(), robot.laser_mount)
+    _check_scans(sections["pairs"], pairs, scanned_time(world, robot))
     return PairsFile(
         path=path,
         robot=robot,
-        world=read_world(sections["world"]),
-        pairs=_read_pairs(sections["pairs"], load_catalogue(), robot.laser_mount),
+        world=world,
+        pairs=pairs,
         settings=_read_settings(sections.get("settings")),
         constraints=read_constraints(sections["constraints"]) if "constraints" in sections else (),
         controller=read_controller(sections["controller"]) if "controller" in sections else None,
     )
+
+
+def scanned_time(world: World, robot: Robot) -> float:
+    """The longest stretch of time the gate judges scans over (s): a run lasts up to the time
+    limit, and the path the solver plans along lasts as long as the robot's nominal pace takes."""
+    path = nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
+    return max(world.time_limit, path.duration)
+
+
+def _check_scans(node: SpecNode, pairs: tuple[Pair, ...], seconds: float) -> None:
+    """Refuse a scanner that would take more than MAX_SCANS scans along the route."""
+    for pair in pairs:
+        for side in ("baseline", "candidate"):
+            profile = getattr(pair, side).profile
+            scans = profile.update_rate * seconds
+            if scans > MAX_SCANS:
+                written = node.entries(what="pairs")[pair.name].entries(what="scanners")[side]
+                raise written.error(
+                    f"at {profile.update_rate:g} Hz over the {seconds:g} s the gate judges this "
+                    f"route (its time limit, or its nominal duration), the {side} scanner takes "
+                    f"{scans:,.0f} scans, more than the {MAX_SCANS:,} the gate judges: each is "
+                    "ray cast and checked",
+                    f"lower the scanner's update_rate to at most {MAX_SCANS / seconds:g} Hz, "
+                    "or the world's time_limit",
+                )
 
 
 def _read_settings(node: SpecNode | None) -> Settings:
@@ -120,7 +162,9 @@ def _read_settings(node: SpecNode | None) -> Settings:
         witnesses = count.whole_number()
         if not 1 <= witnesses <= MAX_WITNESSES:
             raise count.error(
-                f"{witnesses} witnesses per direction", f"write a number from 1 to {MAX_WITNESSES}"
+                f"{witnesses} witnesses per direction: each is a test item of its own, and more "
+                f"than {MAX_WITNESSES} would each cost a solver search and a round of driving",
+                f"write a number from 1 to {MAX_WITNESSES}",
             )
     return Settings(smallest, largest, witnesses)
 
@@ -130,7 +174,7 @@ def _size(node: SpecNode | None, default: float) -> float:
         return default
     if node.number("m") <= 0:
         raise node.error(f"{node.value} m is no obstacle", "write a positive width in m, e.g. 0.05")
-    return node.number("m")
+    return node.number_in(OBSTACLE_SIZE)
 
 
 def _read_pairs(node: SpecNode, catalogue: Catalogue, mount: Pose3D) -> tuple[Pair, ...]:

@@ -19,9 +19,10 @@ import difflib
 from dataclasses import dataclass
 
 from pytest_lasertest.inputs.errors import Location
-from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.inputs.node import Bounds, SpecNode
 from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
 from pytest_lasertest.model.verify import DIRECTIONS, Direction
+from pytest_lasertest.pairsfile.world import COORDINATE, YAW
 
 PLACEMENT_KEYS = ("obstacle", "seed", "direction")
 SHAPES: dict[str, type[Box] | type[Cylinder]] = {"box": Box, "cylinder": Cylinder}
@@ -40,6 +41,20 @@ SHAPE_HINTS = {
 }
 # The range --laser-seed accepts, so that any recorded run's seed can be pinned.
 MAX_SEED = 2**32 - 1
+# Each placement is a test item that drives both robots: a recorded failure is one of a few.
+MAX_PLACEMENTS = 1000
+# The gate's obstacles are at most settings.max_obstacle_size (10 m) wide, and stand on the
+# route's ground; beyond these a figure is a typo.
+_WALL = "an obstacle that large is a wall; the gate places obstacles up to 10 m wide"
+BOUNDS = {
+    "length": Bounds(0.0, 10.0, "m", "no obstacle", _WALL, above_low=True),
+    "width": Bounds(0.0, 10.0, "m", "no obstacle", _WALL, above_low=True),
+    "radius": Bounds(0.0, 5.0, "m", "no obstacle", _WALL, above_low=True),
+    "height": Bounds(0.0, 100.0, "m", "no obstacle", "no obstacle is that tall", above_low=True),
+    "x": COORDINATE,
+    "y": COORDINATE,
+    "yaw": YAW,
+}
 OBSTACLE_EXAMPLE = "e.g. `obstacle: {shape: cylinder, x: 5.0, y: 0.0, radius: 0.05, height: 0.5}`"
 
 
@@ -59,6 +74,12 @@ def read_placements(node: SpecNode) -> tuple[PinnedPlacement, ...]:
     if not items:
         raise node.error(
             "the placements list is empty", "list at least one placement, or remove placements:"
+        )
+    if len(items) > MAX_PLACEMENTS:
+        raise node.error(
+            f"{len(items)} placements are more than the {MAX_PLACEMENTS} the gate accepts for a "
+            "pair: each is a test item that drives both robots",
+            "keep the recorded failures that matter, or split them over pairs",
         )
     return tuple(_read_placement(item) for item in items)
 
@@ -127,7 +148,7 @@ def _value(node: SpecNode) -> float:
         raise node.error(
             f"a {name} of {node.value} {unit} is no obstacle", f"write a positive {name} in {unit}"
         )
-    return value
+    return node.number_in(BOUNDS[name])
 
 
 def _seed(node: SpecNode) -> int:

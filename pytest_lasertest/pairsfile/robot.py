@@ -5,9 +5,10 @@ from __future__ import annotations
 import difflib
 from pathlib import Path
 
-from pytest_lasertest.inputs.node import SpecNode, read_root
+from pytest_lasertest.inputs.node import Bounds, SpecNode, read_root
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import Robot, pad_footprint
+from pytest_lasertest.model.scanner_limits import ProfileError, check_mount
 from pytest_lasertest.pairsfile.bundled import ROBOT_FILE, bundled_robots
 from pytest_lasertest.pairsfile.navigation import load_navigation_file
 
@@ -30,6 +31,60 @@ OPTIONAL_KEYS = (
 ROBOT_KEYS = REQUIRED_KEYS + OPTIONAL_KEYS
 # move_base's default controller_frequency is 20 Hz: a scan reaches the wheels one period later.
 DEFAULT_REACTION_TIME = 0.05  # s
+# Every bound is far beyond a real mobile robot's figure (the Husky's in brackets), so none is
+# refused; beyond them a figure is a typo, and the messages say what it would cost.
+# The physics steps every 20 ms: faster, the robot jumps further than a thin pole is wide.
+SPEED = Bounds(
+    0.0,
+    20.0,
+    "m/s",
+    "the robot must move",
+    "at 20 m/s it moves 0.4 m in one 20 ms physics step, past thin obstacles unseen",
+    above_low=True,
+)  # (1.0)
+TURN_RATE = Bounds(
+    0.0,
+    20.0,
+    "rad/s",
+    "the robot must turn",
+    "at 20 rad/s it turns 0.4 rad in one 20 ms physics step",
+    above_low=True,
+)  # (2.0)
+# How hard it brakes sets how far ahead it must see an obstacle: near zero, that is the world.
+ACCELERATION = Bounds(
+    0.01,
+    100.0,
+    "m/s^2",
+    "the robot would take minutes and metres to stop",
+    "10 g is beyond any wheeled robot",
+)  # (3.0)
+ANGULAR_ACCELERATION = Bounds(
+    0.01,
+    1000.0,
+    "rad/s^2",
+    "the robot would take minutes to start turning",
+    "no wheeled robot starts turning that fast",
+)  # (6.0)
+# The nominal pace times the path scan by scan: slower, a path of minutes holds millions of scans.
+NOMINAL_SPEED = Bounds(
+    0.01, 20.0, "m/s", "the path would take hours at this pace, scan by scan", SPEED.too_high
+)  # (0.5)
+NOMINAL_TURN_RATE = Bounds(
+    0.01, 20.0, "rad/s", "each turn would take minutes, scan by scan", TURN_RATE.too_high
+)  # (1.0)
+REACTION_TIME = Bounds(
+    0.0,
+    10.0,
+    "s",
+    "no robot reacts before it reads a scan",
+    "a robot that reacts 10 s late has driven past anything it saw",
+)  # (0.2)
+PADDING = Bounds(
+    0.0, 1.0, "m", "costmap_2d pads a footprint outward", "padding is a few centimetres"
+)  # (0.01)
+# The largest mobile robots are a few metres across; costmaps rasterise the footprint in cells.
+MAX_FOOTPRINT_REACH = 20.0  # m
+MAX_CORNERS = 100  # costmap_2d footprints have 4 to a few dozen corners
 
 
 def read_robot(node: SpecNode) -> Robot:
@@ -44,28 +99,20 @@ def load_robot_file(path: Path) -> Robot:
     for key in REQUIRED_KEYS:
         if key not in fields:
             raise root.missing(key, f"a robot file needs {', '.join(REQUIRED_KEYS)}")
-    top_speed = _positive(fields["max_linear_velocity"], "m/s", "its top speed")
-    top_turn_rate = _positive(fields["max_angular_velocity"], "rad/s", "its top turn rate")
-    padding = fields["footprint_padding"].number("m") if "footprint_padding" in fields else 0.0
+    top_speed = fields["max_linear_velocity"].number_in(SPEED)
+    top_turn_rate = fields["max_angular_velocity"].number_in(TURN_RATE)
+    padding = _optional(fields, "footprint_padding", PADDING, 0.0)
     return Robot(
         name=fields["name"].text(),
         laser_mount=_mount(fields["laser_mount"]),
         footprint=pad_footprint(_footprint(fields["footprint"]), padding),
         max_linear_velocity=top_speed,
-        max_linear_acceleration=_positive(
-            fields["max_linear_acceleration"], "m/s^2", "how hard it brakes"
-        ),
+        max_linear_acceleration=fields["max_linear_acceleration"].number_in(ACCELERATION),
         max_angular_velocity=top_turn_rate,
-        max_angular_acceleration=_positive(
-            fields["max_angular_acceleration"], "rad/s^2", "how fast it starts turning"
-        ),
-        nominal_speed=_optional(fields, "nominal_speed", "m/s", "its cruising speed", top_speed),
-        nominal_turn_rate=_optional(
-            fields, "nominal_turn_rate", "rad/s", "how fast it turns in place", top_turn_rate
-        ),
-        reaction_time=_optional(
-            fields, "reaction_time", "s", "its reaction time", DEFAULT_REACTION_TIME, zero=True
-        ),
+        max_angular_acceleration=fields["max_angular_acceleration"].number_in(ANGULAR_ACCELERATION),
+        nominal_speed=_nominal(fields, "nominal_speed", NOMINAL_SPEED, top_speed),
+        nominal_turn_rate=_nominal(fields, "nominal_turn_rate", NOMINAL_TURN_RATE, top_turn_rate),
+        reaction_time=_optional(fields, "reaction_time", REACTION_TIME, DEFAULT_REACTION_TIME),
         navigation=load_navigation_file(fields["navigation"]) if "navigation" in fields else (),
     )
 
@@ -75,26 +122,31 @@ def _mount(node: SpecNode) -> Pose3D:
     for key in ("xyz", "rpy"):
         if key not in mount:
             raise node.missing(key, f"write `{key}: [0.0, 0.0, 0.0]`")
-    return Pose3D(xyz=mount["xyz"].triple("m"), rpy=mount["rpy"].triple("rad"))
+    pose = Pose3D(xyz=mount["xyz"].triple("m"), rpy=mount["rpy"].triple("rad"))
+    try:
+        check_mount(pose)
+    except ProfileError as error:
+        raise mount[error.field.split(".")[-1]].error(error.problem, error.fix) from None
+    return pose
 
 
-def _positive(node: SpecNode, unit: str, what: str, *, zero: bool = False) -> float:
-    value = node.number(unit)
-    if value < 0 or (value == 0 and not zero):
-        raise node.error(f"{node.value} {unit} cannot be {what}", f"write {what} in {unit}")
-    return value
+def _optional(fields: dict[str, SpecNode], key: str, bounds: Bounds, default: float) -> float:
+    return fields[key].number_in(bounds) if key in fields else default
 
 
-def _optional(
-    fields: dict[str, SpecNode],
-    key: str,
-    unit: str,
-    what: str,
-    default: float,
-    *,
-    zero: bool = False,
-) -> float:
-    return _positive(fields[key], unit, what, zero=zero) if key in fields else default
+def _nominal(fields: dict[str, SpecNode], key: str, bounds: Bounds, top: float) -> float:
+    """A nominal pace, no faster than the robot's top one, which it is by default."""
+    if key not in fields:
+        return top
+    pace = fields[key].number_in(bounds)
+    if pace > top:
+        limit = "max_linear_velocity" if key == "nominal_speed" else "max_angular_velocity"
+        raise fields[key].error(
+            f"{pace:g} {bounds.unit} is faster than the robot's {limit}, {top:g} {bounds.unit}",
+            f"write a {key} of at most {top:g} {bounds.unit}, or leave it out to cruise at "
+            "the top one",
+        )
+    return pace
 
 
 def _footprint(node: SpecNode) -> tuple[tuple[float, float], ...]:
@@ -103,7 +155,14 @@ def _footprint(node: SpecNode) -> tuple[tuple[float, float], ...]:
         "write the corners as ROS does, "
         "e.g. [[-0.5, -0.33], [-0.5, 0.33], [0.5, 0.33], [0.5, -0.33]]"
     )
-    points = [point.vector(2, "m") for point in node.items(what="footprint corners [x, y]")]
+    corners = node.items(what="footprint corners [x, y]")
+    if len(corners) > MAX_CORNERS:
+        raise node.error(
+            f"{len(corners)} corners are more than the {MAX_CORNERS} the gate accepts: "
+            "costmaps test every edge at every cell they check",
+            "write the robot's outline with fewer corners (a rectangle has 4)",
+        )
+    points = [_corner(corner) for corner in corners]
     if len(points) < 3:
         raise node.error(f"{len(points)} corners enclose no area", example)
     turns = [_cross(points[i - 2], points[i - 1], points[i]) for i in range(len(points))]
@@ -113,6 +172,18 @@ def _footprint(node: SpecNode) -> tuple[tuple[float, float], ...]:
     if any(_cross(ordered[i - 1], ordered[i], (0.0, 0.0)) <= 0 for i in range(len(ordered))):
         raise node.error("the polygon does not contain the robot's origin", example)
     return tuple((x, y) for x, y in ordered)
+
+
+def _corner(node: SpecNode) -> tuple[float, ...]:
+    point = node.vector(2, "m")
+    if max(abs(point[0]), abs(point[1])) > MAX_FOOTPRINT_REACH:
+        raise node.error(
+            f"the corner ({point[0]:g}, {point[1]:g}) m lies more than {MAX_FOOTPRINT_REACH:g} m "
+            "from the robot's origin: no mobile robot is that large, and costmaps rasterise "
+            "the footprint cell by cell",
+            "write the corners in m around the base origin, e.g. [0.5, 0.33]",
+        )
+    return point
 
 
 def _cross(a: tuple[float, ...], b: tuple[float, ...], c: tuple[float, ...]) -> float:

@@ -2,15 +2,54 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 
-from pytest_lasertest.inputs.node import SpecNode
-from pytest_lasertest.model.geometry import Point2D, Pose2D
+from pytest_lasertest.inputs.node import Bounds, SpecNode
+from pytest_lasertest.model.geometry import FULL_TURN, Point2D, Pose2D
+from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.model.route import nominal_path
+from pytest_lasertest.nav.move_base.settings import (
+    NavigationSettings,
+    costmap_cells,
+    global_costmap_size,
+)
 
 WORLD_KEYS = ("start", "goal", "route", "time_limit")
 # Closer than this, two waypoints are one: the robot cannot tell them apart.
 MIN_LEG = 1e-3  # m
+# Every run simulates the time limit in 20 ms physics steps, each with a scan and a command: an
+# hour is 180,000 steps, many minutes of computing per run, and a pair drives dozens of runs.
+TIME_LIMIT = Bounds(
+    1.0,
+    3600.0,
+    "s",
+    "the robot cannot drive anywhere in less than a second",
+    "every run simulates the whole time in 20 ms steps, and a pair drives dozens of runs",
+)
+# The solver plans along the route scan by scan; at its nominal pace the robot must finish it
+# within the longest time limit.
+MAX_NOMINAL_DURATION = TIME_LIMIT.high  # s
+# Every check of a placement sweeps the robot's footprint along every leg and turn.
+MAX_WAYPOINTS = 100
+# Far from the origin a float holds positions to less than the millimetres the verifier needs.
+COORDINATE = Bounds(
+    -10_000.0,
+    10_000.0,
+    "m",
+    "positions that far out lose the millimetres the verifier judges by",
+    "positions that far out lose the millimetres the verifier judges by",
+)
+YAW = Bounds(
+    -FULL_TURN,
+    FULL_TURN,
+    "rad",
+    "write the heading within a turn of zero",
+    "write the heading within a turn of zero",
+)
+# The simulator counts a robot within this of the goal as arrived (`sim/oracles.py`, Rules).
+GOAL_TOLERANCE = 0.2  # m
 
 
 @dataclass(frozen=True)
@@ -27,8 +66,9 @@ class World:
         return self.route[-1]
 
 
-def read_world(node: SpecNode) -> World:
-    """A World from `start`, one of `goal` or `route`, and `time_limit`."""
+def read_world(node: SpecNode, robot: Robot) -> World:
+    """A World from `start`, one of `goal` or `route`, and `time_limit`, that `robot` can drive
+    within its time limit."""
     fields = node.mapping(WORLD_KEYS, what="world fields")
     if "start" not in fields:
         raise node.missing("start", "write `start: {x: 0.0, y: 0.0, yaw: 0.0}` (m, m, rad)")
@@ -43,22 +83,90 @@ def read_world(node: SpecNode) -> World:
     if "time_limit" not in fields:
         raise node.missing("time_limit", "write the time the robot has to reach the goal, in s")
     start = _pose(fields["start"])
-    waypoints = [fields["goal"]] if "goal" in fields else fields["route"].items(what="waypoints")
+    waypoints = [fields["goal"]] if "goal" in fields else _waypoints(fields["route"])
+    world = World(start, _route(start, waypoints), fields["time_limit"].number_in(TIME_LIMIT))
+    route_node = fields.get("route", fields.get("goal", node))
+    _check_pace(world, robot, route_node)
+    _check_global_costmap(world, robot, route_node)
+    _check_time_limit(world, robot, fields["time_limit"])
+    return world
+
+
+def _waypoints(node: SpecNode) -> list[SpecNode]:
+    waypoints = node.items(what="waypoints")
     if not waypoints:
-        raise fields["route"].error("the route is empty", "list at least one waypoint")
-    route = _route(start, waypoints)
-    time_limit = fields["time_limit"]
-    if time_limit.number("s") <= 0:
-        raise time_limit.error(
-            f"{time_limit.value} s leaves no time to drive", "write a positive time in s"
+        raise node.error("the route is empty", "list at least one waypoint")
+    if len(waypoints) > MAX_WAYPOINTS:
+        raise node.error(
+            f"the route has {len(waypoints)} waypoints, more than the {MAX_WAYPOINTS} the gate "
+            "accepts: every check of a placement sweeps the robot along every leg and turn",
+            f"keep the corners that matter, at most {MAX_WAYPOINTS}; the robot drives straight "
+            "between them",
         )
-    return World(start, route, time_limit.number("s"))
+    return waypoints
+
+
+def _check_time_limit(world: World, robot: Robot, node: SpecNode) -> None:
+    """Refuse a time limit in which the robot cannot reach the goal even at its top speed."""
+    length = route_length(world)
+    needed = max(length - GOAL_TOLERANCE, 0.0) / robot.max_linear_velocity  # s
+    if world.time_limit >= needed:
+        return
+    nominal = nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
+    raise node.error(
+        f"{world.time_limit:g} s is too short for the route: it is {length:.2f} m long, and "
+        f"even at its top speed of {robot.max_linear_velocity:g} m/s, never slowing or "
+        f"turning, the robot needs {needed:.2f} s to come within {GOAL_TOLERANCE:g} m of the "
+        "goal; every run would fail, the baseline's as well as the candidate's",
+        f"raise time_limit: at its nominal pace the route takes {nominal.duration:.1f} s, so "
+        f"give it about twice that, e.g. {_round_up(2.0 * nominal.duration):g} s",
+    )
+
+
+def _check_pace(world: World, robot: Robot, node: SpecNode) -> None:
+    """Refuse a route the robot takes longer than MAX_NOMINAL_DURATION to drive at its nominal
+    pace: the solver would plan along it scan by scan."""
+    nominal = nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
+    if nominal.duration <= MAX_NOMINAL_DURATION:
+        return
+    raise node.error(
+        f"at its nominal speed of {robot.nominal_speed:g} m/s and turn rate of "
+        f"{robot.nominal_turn_rate:g} rad/s the robot takes {nominal.duration:.0f} s along this "
+        f"route, more than the {MAX_NOMINAL_DURATION:g} s the gate plans along, scan by scan",
+        "shorten the route, or raise the robot file's nominal_speed and nominal_turn_rate",
+    )
+
+
+def _check_global_costmap(world: World, robot: Robot, node: SpecNode) -> None:
+    """Refuse a route whose global costmap, at the robot's resolution, has too many cells."""
+    settings = NavigationSettings.from_parameters(robot.navigation)
+    corners = [(world.start.x, world.start.y), *((point.x, point.y) for point in world.route)]
+    span = max(math.dist(a, b) for a in corners for b in corners)  # m
+    size = global_costmap_size(settings, span)
+    cells = costmap_cells(size, settings.costmap.resolution, "global")
+    if cells is not None:
+        problem, fix = cells
+        raise node.error(
+            f"along this route (its points up to {span:.0f} m apart) {problem}",
+            f"{fix} (navigation: costmap.resolution, global_costmap.size), or shorten the route",
+        )
+
+
+def route_length(world: World) -> float:
+    """How far the route runs from the start through every waypoint (m)."""
+    corners = [(world.start.x, world.start.y), *((point.x, point.y) for point in world.route)]
+    return sum(math.dist(a, b) for a, b in itertools.pairwise(corners))
+
+
+def _round_up(seconds: float) -> float:
+    """A time limit a person would write: whole tens of seconds, at least 10."""
+    return max(10.0, math.ceil(seconds / 10.0) * 10.0)
 
 
 def _pose(node: SpecNode) -> Pose2D:
     fields = node.mapping(("x", "y", "yaw"), what="pose fields (x, y, yaw)")
     x, y = _coordinates(node, fields)
-    yaw = fields["yaw"].number("rad") if "yaw" in fields else 0.0
+    yaw = fields["yaw"].number_in(YAW) if "yaw" in fields else 0.0
     return Pose2D(x, y, yaw)
 
 
@@ -71,7 +179,7 @@ def _coordinates(node: SpecNode, fields: dict[str, SpecNode]) -> tuple[float, fl
     for key in ("x", "y"):
         if key not in fields:
             raise node.missing(key, f"write the {key} coordinate in m")
-    return fields["x"].number("m"), fields["y"].number("m")
+    return fields["x"].number_in(COORDINATE), fields["y"].number_in(COORDINATE)
 
 
 def _route(start: Pose2D, nodes: list[SpecNode]) -> tuple[Point2D, ...]:

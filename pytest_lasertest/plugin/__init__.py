@@ -165,5 +165,6 @@ def collection_args(
     """
     if named and not explicit:
         return [str(path) for path in named]
-    present = {Path(here, arg).resolve() for arg in args}
+    # `FILE::ITEM` names FILE too: adding FILE would run all of it besides the item.
+    present = {Path(here, arg.partition("::")[0]).resolve() for arg in args}
     return args + [str(path) for path in named + always if path not in present]

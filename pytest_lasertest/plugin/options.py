@@ -2,15 +2,20 @@
 
 from __future__ import annotations
 
+import os
 import secrets
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import pytest
 
 from pytest_lasertest.model.policy import POLICIES, Policy
 from pytest_lasertest.search.budgets import BUDGET_NAMES, BUDGETS, MAX_EXAMPLES, Budget, BudgetName
+
+if TYPE_CHECKING:
+    from pytest_lasertest.reports.formats import Replay
 
 MAX_SEED = 2**32 - 1
 PAIRS_SUFFIXES = (".lasertest.yaml", ".lasertest.yml")
@@ -36,6 +41,21 @@ class LaserOptions:
         """The run's seed, profile and policy, as the artifacts record them."""
         return {"seed": self.seed, "profile": self.profile, "policy": self.policy}
 
+    def replay(self, nodeid: str, path: Path, here: Path) -> Replay:
+        """How to run the item `nodeid`, of the pairs file at `path`, again as this run ran it,
+        from `here`, where pytest was started: the node id's path is relative to the rootdir,
+        which need not be `here`."""
+        # Only items replay, and they have loaded the reports (and numpy) already.
+        from pytest_lasertest.reports.formats import Replay, shell_word
+
+        _, _, name = nodeid.partition("::")
+        file = item_path(path, here)
+        options = self.replay_options()
+        if not path.name.endswith(PAIRS_SUFFIXES):
+            # pytest collects a pairs file of another name only when --laser-pairs names it.
+            options = f"--laser-pairs={shell_word(file)} {options}"
+        return Replay(f"{file}::{name}", options, here)
+
     def replay_options(self) -> str:
         """The options that reproduce this run."""
         examples = f" --laser-examples={self.examples}" if self.examples is not None else ""
@@ -43,6 +63,15 @@ class LaserOptions:
             f"--laser-seed={self.seed} --laser-profile={self.profile} --laser-policy={self.policy}"
             f"{examples}"
         )
+
+
+def item_path(path: Path, here: Path) -> str:
+    """The pairs file at `path` as pytest, started in `here`, takes it: relative, with `..` where
+    it lies elsewhere (absolute only when no relative path leads there)."""
+    try:
+        return os.path.relpath(path.resolve(), here.resolve())
+    except ValueError:  # another drive, on Windows
+        return str(path.resolve())
 
 
 def parse_seed(text: str) -> int | None:
@@ -106,14 +135,49 @@ def parse_policy(text: str) -> Policy:
 
 
 def parse_artifacts(text: str, base: Path) -> Path:
-    """The directory that receives failure artifacts; created when the first one is written."""
+    """The directory that receives failure artifacts; created when the first one is written.
+
+    Refused up front: an empty path, a path at a file or below one, and a directory this user
+    cannot create or write to. What only writing can tell (a full disk, a folder where an
+    artifact goes) is reported beside each failure instead.
+    """
     path = base / text
-    if not text or (path.exists() and not path.is_dir()):
+    if not text or (_nearest_existing(path) == path and not path.is_dir()):
         raise pytest.UsageError(
             f"--laser-artifacts={text!r} is not a directory: give a directory path "
             "(it is created if missing)"
         )
+    problem = unwritable(path)
+    if problem is not None:
+        raise pytest.UsageError(
+            f"--laser-artifacts={text!r}: {problem}: give a directory this user can write to "
+            "(it is created if missing)"
+        )
     return path
+
+
+def unwritable(directory: Path) -> str | None:
+    """Why no file can be written in `directory` (made if missing), or None if it can be."""
+    existing = _nearest_existing(directory)
+    if existing.is_symlink() and not existing.exists():
+        return f"{existing} is a link to {os.readlink(existing)}, which does not exist"
+    if not existing.is_dir():
+        return f"{existing} is a file, so no directory can be made below it"
+    if not os.access(existing, os.W_OK | os.X_OK):
+        return f"this user cannot write to {existing}"
+    return None
+
+
+def _nearest_existing(path: Path) -> Path:
+    """`path` if it exists (a dangling link too), else its nearest parent that does and that
+    this user can look at: the access check then refuses a parent it cannot look into."""
+    for folder in (path, *path.parents):
+        try:
+            folder.lstat()
+        except OSError:  # missing, below a file, or in a folder this user cannot look into
+            continue
+        return folder
+    return Path(path.anchor)
 
 
 def parse_pairs(texts: Iterable[str], base: Path, source: str) -> tuple[Path, ...]:
@@ -122,7 +186,7 @@ def parse_pairs(texts: Iterable[str], base: Path, source: str) -> tuple[Path, ..
     for text in texts:
         path = (base / text).resolve()
         if not path.is_file():
-            what = "a directory" if path.is_dir() else "missing"
+            what = _not_a_file(path)
             raise pytest.UsageError(
                 f"{source}: {text!r} is {what}; it takes the path of a pairs file "
                 f"(relative to {base}); to collect every *{PAIRS_SUFFIXES[0]} in a directory, "
@@ -130,6 +194,14 @@ def parse_pairs(texts: Iterable[str], base: Path, source: str) -> tuple[Path, ..
             )
         paths.append(path)
     return tuple(paths)
+
+
+def _not_a_file(path: Path) -> str:
+    """What `path`, which is no regular file, is instead."""
+    if path.is_dir():
+        return "a directory"
+    # A pipe or a device: reading it could wait for ever, or never end.
+    return "not a regular file (a pipe, socket or device)" if path.exists() else "missing"
 
 
 def is_pairs_file(path: Path, named: frozenset[Path]) -> bool:

@@ -27,6 +27,7 @@ if TYPE_CHECKING:
     from pytest_lasertest.search.drives import PairDrive, RunCache
     from pytest_lasertest.search.trials import Setting
     from pytest_lasertest.sim.client import PhysicsClient
+    from pytest_lasertest.sim.scenario import ControllerError
 
 # The pytest-xdist `workerinput` entry that hands the controller's seed to each worker.
 SEED_INPUT = "lasertest_seed"
@@ -53,6 +54,9 @@ class LaserSession:
         self._plans: dict[tuple[Path, str], PairPlan] = {}
         self._avoid: dict[tuple[Path, str], tuple[Witness, ...]] = {}
         self._controls: dict[tuple[Path, str], PairDrive] = {}
+        # The control drives a controller broke: every item of the pair reports it, none drives
+        # it again (a controller that hangs would make each of them wait its time out).
+        self._broken: dict[tuple[Path, str], ControllerError] = {}
         self._client: PhysicsClient | None = None
         self._cache: RunCache | None = None
 
@@ -84,15 +88,25 @@ class LaserSession:
 
     def control_drive(self, spec: PairsFile, pair: Pair, controller: ControllerChoice) -> PairDrive:
         """The pair's obstacle-free runs, driven once per process; they are deterministic, so
-        pytest-xdist workers that drive the same pair get the same runs."""
+        pytest-xdist workers that drive the same pair get the same runs. A controller that
+        breaks them raises `ControllerError`, again for every later item, without driving."""
         key = (spec.path, pair.name)
+        if key in self._broken:
+            broken = self._broken[key]
+            again = type(broken)(broken.fault, broken.scenario, broken.controller)
+            raise again from broken.__cause__
         if key not in self._controls:
             from pytest_lasertest.search.drives import drive_pair
+            from pytest_lasertest.sim.scenario import ControllerError
 
             client, cache = self.physics_client(), self.run_cache()
-            self._controls[key] = drive_pair(
-                spec, pair, (), self.options.seed, controller, client, cache
-            )
+            try:
+                self._controls[key] = drive_pair(
+                    spec, pair, (), self.options.seed, controller, client, cache
+                )
+            except ControllerError as error:
+                self._broken[key] = error
+                raise
         return self._controls[key]
 
     def scene(self, spec: PairsFile, pair: Pair, controller: ControllerChoice) -> Scene:

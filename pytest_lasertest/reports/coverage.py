@@ -3,16 +3,13 @@ and the other changes of the pair."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
-from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.model.coverage import CoverageChange, CoverageComparison
 from pytest_lasertest.pairsfile import Pair
-from pytest_lasertest.reports.formats import Replay
+from pytest_lasertest.reports.formats import Artifacts, Replay
 
 
 def coverage_report(
-    pair: Pair, comparison: CoverageComparison, replay: Replay, artifact: Path | None
+    pair: Pair, comparison: CoverageComparison, replay: Replay, artifacts: Artifacts
 ) -> str:
     """The losses of coverage, then the changes that lose nothing."""
     losses = comparison.losses
@@ -29,8 +26,7 @@ def coverage_report(
     if others:
         lines += ["  other changes:", *(_change_line(change) for change in others)]
     lines.append(replay.line())
-    if artifact is not None:
-        lines.append(f"  evidence   {display_path(artifact)}")
+    lines += artifacts.lines("evidence", replay.here)
     return "\n".join(lines)
 
 

@@ -1,15 +1,19 @@
 """What a drive tells its reader: each robot's scanner and what its run did, the controller, the
-policy and how to replay it; and the figures JUnit XML and the run's summary take from it, as
-plain values that cross to the pytest-xdist controller."""
+policy and how to replay it; what a controller that broke a drive did; and the figures JUnit XML
+and the run's summary take from it, as plain values that cross to the pytest-xdist controller."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
+from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.model.policy import Classification, Policy
 from pytest_lasertest.pairsfile import Pair
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.reports.formats import Replay, run_line
 from pytest_lasertest.search.drives import PairDrive
-from pytest_lasertest.sim.scenario import Run
+from pytest_lasertest.sim.guard import Frame
+from pytest_lasertest.sim.scenario import ControllerError, Run
 
 # What each class of failure means for the change.
 MEANINGS: dict[Classification, str] = {
@@ -42,6 +46,38 @@ def drive_report(
         replay.line(),
     ]
     return "\n".join(lines)
+
+
+def controller_error_report(
+    error: ControllerError, pair: Pair, controller: ControllerChoice, replay: Replay
+) -> str:
+    """A drive the controller broke: what it was called for and what it did, in which drive,
+    the lines of its code that did it, and the fix. No traceback: `--fulltrace` shows one."""
+    fault, scenario = error.fault, error.scenario
+    side = "candidate" if scenario.profile == pair.candidate.profile else "baseline"
+    scanner = getattr(pair, side).label
+    obstacles = "; ".join(obstacle.describe() for obstacle in scenario.obstacles)
+    lines = [
+        f"the controller broke the drive: {fault.describe()}",
+        f"  pair       {pair.name} ({pair.location})",
+        controller_line(controller),
+        f"  drive      the {side} robot ({scanner}), "
+        + (f"past {obstacles}" if obstacles else "without any obstacle"),
+        *_frame_lines(fault.frames),
+        f"  fix        {fault.fix}",
+        replay.line(),
+    ]
+    return "\n".join(lines)
+
+
+def _frame_lines(frames: tuple[Frame, ...]) -> list[str]:
+    """`  at         my_controller.py:12 in observe`, then the line deeper down that raised, if
+    it is another; paths relative to the working directory."""
+    labels = ("at", "inside")[: len(frames)]
+    return [
+        f"  {label:<10} {display_path(Path(frame.path))}:{frame.line} in {frame.function}"
+        for label, frame in zip(labels, frames, strict=True)
+    ]
 
 
 def controller_line(controller: ControllerChoice) -> str:

@@ -12,11 +12,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
-from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.model.obstacles import Obstacle
 from pytest_lasertest.model.plan import Witness
 from pytest_lasertest.model.sensor import LaserProfile
@@ -31,7 +29,7 @@ from pytest_lasertest.model.verify import (
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.reports.drive import MEANINGS, controller_line, run_properties
-from pytest_lasertest.reports.formats import Replay, pose_text, run_line
+from pytest_lasertest.reports.formats import Artifacts, Replay, pose_text, run_line, shell_word
 from pytest_lasertest.search.offsets import AXES, OffsetBox
 from pytest_lasertest.search.trials import TrialResult, Trials
 
@@ -53,6 +51,7 @@ class PlacementFailure:
     notes: tuple[str, ...]  # Hypothesis's own: the falsifying example, what explain found
     seed: int  # of the run, and of its scan noise
     run_options: dict[str, object]  # the run's seed, profile and policy, as artifacts record
+    unstored: str | None = None  # why Hypothesis's example database cannot keep the failure
 
 
 @dataclass(frozen=True)
@@ -72,7 +71,7 @@ class BeamReading:
         return f"beam{plural} {beams} read it, {self.depth * 1000:.0f} mm deep"
 
 
-def failure_report(failure: PlacementFailure, replay: Replay, artifacts: tuple[Path, ...]) -> str:
+def failure_report(failure: PlacementFailure, replay: Replay, artifacts: Artifacts) -> str:
     """The report of a placement item's minimal failure."""
     pair, result, trials = failure.pair, failure.result, failure.trials
     lines = [
@@ -92,26 +91,32 @@ def failure_report(failure: PlacementFailure, replay: Replay, artifacts: tuple[P
         *(f"  hypothesis {note}" for note in failure.notes),
         f"  policy     {trials.policy}",
         f"  seed       {failure.seed}",
-        *_replay_lines(replay, artifacts),
+        *_replay_lines(replay, artifacts, failure.unstored),
     ]
     return "\n".join(lines)
 
 
-def _replay_lines(replay: Replay, artifacts: tuple[Path, ...]) -> list[str]:
-    """How to run the case again: the item, and the pinned repro if one was written."""
-    stored = "(replays this case first, from .hypothesis/)"
-    repro = [path for path in artifacts if path.name.endswith(REPRO_SUFFIX)]
+def _replay_lines(replay: Replay, artifacts: Artifacts, unstored: str | None) -> list[str]:
+    """How to run the case again: the item, and the pinned repro if one was written; then where
+    the artifacts are, and any that could not be written."""
+    stored = (
+        "(replays this case first, from .hypothesis/)"
+        if unstored is None
+        else f"(searches afresh: the example database cannot keep this case, as {unstored})"
+    )
+    repro = [path for path in artifacts.written if path.name.endswith(REPRO_SUFFIX)]
+    lines = artifacts.lines("artifact", replay.here)
     if not repro:
-        return [f"{replay.line()}  {stored}"]
+        return [f"{replay.line()}  {stored}", *lines]
     return [
-        f"  replay     pytest '{display_path(repro[0])}'  (this case alone, pinned)",
+        f"  replay     pytest {shell_word(replay.shown(repro[0]))}  (this case alone, pinned)",
         f"  rerun      {replay.command()}  {stored}",
-        *(f"  artifact   {display_path(path)}" for path in artifacts),
+        *lines,
     ]
 
 
 def rejection_report(
-    pair: Pair, witness: Witness, verification: Verification, replay: Replay, artifact: Path | None
+    pair: Pair, witness: Witness, verification: Verification, replay: Replay, artifacts: Artifacts
 ) -> str:
     """The report of a witness the exact ray cast rejects: a bug in the solver."""
     placement = witness.placement
@@ -132,8 +137,7 @@ def rejection_report(
         times = ", ".join(f"{time:.2f}" for time in verification.seen_by_misser_at)
         lines.append(f"  misser     reads it at t = {times} s")
     lines.append(replay.line())
-    if artifact is not None:
-        lines.append(f"  evidence   {display_path(artifact)}")
+    lines += artifacts.lines("evidence", replay.here)
     return "\n".join(lines)
 
 

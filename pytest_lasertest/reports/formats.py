@@ -1,19 +1,40 @@
-"""The shared formats of what reports show: obstacles, scanner profiles, witnesses and runs.
+"""The shared formats of what reports show: obstacles, scanner profiles, witnesses and runs;
+how to run an item again; which artifacts a failure wrote and which it could not.
 
 The JSON forms are stable contracts (documented in the README): `lasertest plan --json`,
 `lasertest profile --json` and the artifacts' JSON files all write obstacles, profiles and
-witnesses this way.
+witnesses this way, as standard JSON (`json_text`).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import json
+import math
 from dataclasses import dataclass
+from pathlib import Path
 
 from pytest_lasertest.model.obstacles import Box, Obstacle
 from pytest_lasertest.model.plan import Witness
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.sim.scenario import Run
+
+
+def json_text(data: object, *, sort_keys: bool = False) -> str:
+    """`data` as standard JSON, indented: an infinite or NaN number (a margin that does not
+    apply, say) as the string "inf", "-inf" or "nan", which Python's float() reads back. Python
+    would write `Infinity`, which is no JSON: jq, JavaScript and most parsers refuse the file."""
+    return json.dumps(_finite(data), indent=2, sort_keys=sort_keys, allow_nan=False)
+
+
+def _finite(value: object) -> object:
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(value)
+    if isinstance(value, dict):
+        return {key: _finite(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_finite(item) for item in value]
+    return value
 
 
 def obstacle_json(obstacle: Obstacle) -> dict[str, object]:
@@ -72,15 +93,63 @@ def pose_text(x: float, y: float, yaw: float) -> str:
 
 @dataclass(frozen=True)
 class Replay:
-    """How to run an item again: its node id and the options of the run it failed in."""
+    """How to run an item again from the directory pytest was started in: the item as pytest
+    takes it there, and the options of the run it failed in."""
 
-    nodeid: str
+    item: str  # `PATH::NAME`, PATH relative to `here` (with `..` if need be)
     options: str  # `--laser-seed=... --laser-profile=... --laser-policy=...`
+    here: Path  # where pytest was started: the commands work from there
 
     def command(self) -> str:
-        """`pytest 'NODEID' --laser-seed=...`."""
-        return f"pytest '{self.nodeid}' {self.options}"
+        """`pytest 'PATH::NAME' --laser-seed=...`."""
+        return f"pytest {shell_word(self.item)} {self.options}"
 
     def line(self) -> str:
-        """`  replay     pytest 'NODEID' --laser-seed=...`, as every failure report ends."""
+        """`  replay     pytest 'PATH::NAME' --laser-seed=...`, as every failure report ends."""
         return f"  replay     {self.command()}"
+
+    def shown(self, path: Path) -> str:
+        """A file as the commands name it: relative below `here`, else absolute."""
+        return shown_path(path, self.here)
+
+
+@dataclass(frozen=True)
+class Unwritten:
+    """An artifact a failing item could not write (the operating system refused it, or the
+    pairs file changed under the repro), and why."""
+
+    path: Path  # where it was to go
+    reason: str  # e.g. "No space left on device [ENOSPC]"
+    fix: str
+
+    def line(self, here: Path) -> str:
+        """`  unwritten  PATH: REASON; fix: FIX`: one line beside the failure it belongs to."""
+        return f"  unwritten  {shown_path(self.path, here)}: {self.reason}; fix: {self.fix}"
+
+
+@dataclass(frozen=True)
+class Artifacts:
+    """What a failing item wrote below `--laser-artifacts`, and what it could not."""
+
+    written: tuple[Path, ...] = ()
+    unwritten: tuple[Unwritten, ...] = ()
+
+    def lines(self, label: str, here: Path) -> list[str]:
+        """`  LABEL   PATH` for each file written, then an `unwritten` line for each not."""
+        return [f"  {label:<10} {shown_path(path, here)}" for path in self.written] + [
+            problem.line(here) for problem in self.unwritten
+        ]
+
+
+def shell_word(text: str) -> str:
+    """`text` in single quotes, as a POSIX shell reads it back whatever it holds."""
+    return "'" + text.replace("'", "'\"'\"'") + "'"
+
+
+def shown_path(path: Path, here: Path) -> str:
+    """`path` as a command started in `here` names it: relative below `here`, else absolute."""
+    resolved = path.resolve()
+    try:
+        return str(resolved.relative_to(here.resolve()))
+    except ValueError:
+        return str(resolved)

@@ -5,7 +5,9 @@ One run is one fresh DIRECT client stepped at a fixed time step. The scanner sca
 update rate; each scan goes to the controller with the odometry, and the command it answers is
 driven through the wheels until the next scan. The same scenario gives the same trajectory, bit
 for bit: PyBullet is deterministic for identical command sequences, and the scan noise comes
-from a generator seeded by the scenario.
+from a generator seeded by the scenario. The controller is made and called through `Guard`
+(`guard.py`), which reads its commands exactly as returned and turns a controller that raises,
+hangs or answers no command into `ControllerError`.
 """
 
 from __future__ import annotations
@@ -21,9 +23,10 @@ from pytest_lasertest.model.obstacles import Obstacle
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import scan_count
 from pytest_lasertest.model.sensor import LaserProfile
-from pytest_lasertest.nav.protocol import Controller, ControllerFactory, LaserScan, Odometry
+from pytest_lasertest.nav.protocol import ControllerFactory, LaserScan, Odometry
 from pytest_lasertest.sim.client import PhysicsClient, PhysicsWorld
 from pytest_lasertest.sim.drive import Drive, Twist
+from pytest_lasertest.sim.guard import ControllerFault, Faulted, Guard
 from pytest_lasertest.sim.lidar import FlatLidar, noisy, ranges_from_fractions, scan_rays
 from pytest_lasertest.sim.oracles import Referee, Rules, Verdicts
 
@@ -75,20 +78,41 @@ class Run:
         return digest.hexdigest()
 
 
+class ControllerError(BaseException):
+    """A run the controller broke (see `sim/guard.py`): what it did, and in which scenario.
+
+    Not an `Exception`, as `Faulted` is not: it ends the run and whatever search drove it, and
+    the item reports it."""
+
+    def __init__(self, fault: ControllerFault, scenario: Scenario, controller: str) -> None:
+        super().__init__(f"the controller {controller}: {fault.describe()}")
+        self.fault = fault
+        self.scenario = scenario
+        self.controller = controller  # `module:qualname` of its factory
+
+
 def run_scenario(
     scenario: Scenario, make_controller: ControllerFactory, client: PhysicsClient | None = None
 ) -> Run:
     """Run the scenario with a fresh controller from `make_controller` until it is decided or
-    its time is up, in `client` (reset for it) or in a client of its own."""
-    controller = make_controller(scenario.robot, scenario.route)
-    with PhysicsWorld(scenario.start, scenario.obstacles, scenario.time_step, client) as world:
-        return _Runner(scenario, world, controller).run()
+    its time is up, in `client` (reset for it) or in a client of its own. A controller that
+    breaks its protocol raises `ControllerError`."""
+    guard = Guard(make_controller)
+    try:
+        with guard:
+            guard.make(scenario.robot, scenario.route)
+            start, obstacles = scenario.start, scenario.obstacles
+            with PhysicsWorld(start, obstacles, scenario.time_step, client) as world:
+                return _Runner(scenario, world, guard).run()
+    except Faulted as faulted:
+        # What the controller raised, if it raised, is the cause: --fulltrace shows it.
+        raise ControllerError(faulted.fault, scenario, guard.name) from faulted.__cause__
 
 
 class _Runner:
     """One run in progress: the world, the scanner, the drive and the referee."""
 
-    def __init__(self, scenario: Scenario, world: PhysicsWorld, controller: Controller) -> None:
+    def __init__(self, scenario: Scenario, world: PhysicsWorld, controller: Guard) -> None:
         self.scenario = scenario
         self.world = world
         self.controller = controller

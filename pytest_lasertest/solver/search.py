@@ -233,13 +233,20 @@ def _separating(piece: FloatArray, point: FloatArray, shape: ObstacleShape) -> H
     return max(options, key=lambda plane: plane.room(point) / shape.spread(np.array(plane.normal)))
 
 
+# A direction without a witness is searched at every anchor: a route of kilometres at 0.5 m
+# spacing would take an hour; spread this many along it, it takes seconds.
+MAX_ANCHORS = 100
+
+
 def anchor_times(scene: Scene, direction: Direction, spacing: float) -> list[float]:
-    """Detector scan instants on legs, with room to brake on the leg, `spacing` m apart.
+    """Detector scan instants on legs, with room to brake on the leg, `spacing` m apart, or
+    further apart on a route so long that it would hold more than MAX_ANCHORS.
 
     Each is moved to the detector's last scan before the misser's next one, where the misser's
     picture is stalest: a slower misser shows its difference there.
     """
     path, detector = scene.path, scene.detector(direction)
+    spacing = max(spacing, sum(leg.length for leg in path.legs()) / MAX_ANCHORS)
     rate, misser_rate = detector.update_rate, scene.misser(direction).update_rate
     anchors: list[float] = []
     for time in scan_times(rate, path.duration):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from decimal import Decimal
+
 from pytest_lasertest.pairsfile.constraints import (
     Arithmetic,
     Call,
@@ -40,7 +42,15 @@ def term_text(term: Term, yaw: float) -> str:
         return f"(- {term_text(term.operand, yaw)})"
     if isinstance(term, Call):
         return _call_text(term, yaw)
-    return number(term.value)
+    return exact(term.value)
+
+
+def exact(value: float) -> str:
+    """A user's number as the SMT-LIB decimal it was written as: `encoding.number` rounds to
+    10 um, which would turn `size >= 0.000001` into `size >= 0`."""
+    text = format(Decimal(repr(abs(value))), "f")
+    text = text if "." in text else f"{text}.0"
+    return f"(- {text})" if value < 0 else text
 
 
 def _call_text(call: Call, yaw: float) -> str:

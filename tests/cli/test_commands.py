@@ -193,7 +193,9 @@ def test_explain_of_an_unknown_pair_names_the_pairs_and_exits_2(
 ) -> None:
     assert main(["explain", str(size_pairs), "sise", "candidate-misses-0"]) == 2
     captured = capsys.readouterr()
-    assert captured.err == f"lasertest: no pair 'sise' in {size_pairs}; pairs: size\n"
+    assert captured.err == (
+        f"lasertest: no pair 'sise' in {size_pairs}\n  fix: give one of its pairs: size\n"
+    )
     assert captured.out == ""
 
 
@@ -202,8 +204,9 @@ def test_explain_of_an_unknown_witness_names_the_witnesses_and_exits_2(
 ) -> None:
     assert main(["explain", str(size_pairs), "size", "candidate-misses-1"]) == 2
     assert capsys.readouterr().err == (
-        "lasertest: pair 'size' has no witness 'candidate-misses-1'; "
-        "witnesses: candidate-misses-0, baseline-misses-0\n"
+        "lasertest: pair 'size' has no witness 'candidate-misses-1'\n"
+        "  fix: give one of the witnesses `lasertest plan` prints for it: "
+        "candidate-misses-0, baseline-misses-0\n"
     )
 
 

@@ -235,7 +235,9 @@ def test_a_directory_outside_any_repository_is_refused(
     elsewhere.mkdir()
     with pytest.raises(GitError) as raised:
         open_revision(elsewhere, "main")
-    assert raised.value.problem == f"{elsewhere} is not inside a git repository"
+    assert raised.value.problem == (
+        f"{elsewhere} is not inside a git repository, so `ref:` cannot read it at a revision"
+    )
     assert "drop `ref:`" in raised.value.fix
 
 

@@ -214,8 +214,8 @@ CASES = {
         "time_limit: 0",
         5,
         "world.time_limit",
-        "0 s leaves no time to drive",
-        "write a positive time in s",
+        "0 s is below 1 s: the robot cannot drive anywhere in less than a second",
+        "write a value from 1 to 3600 s",
     ),
     "a constraint that is code": Case(
         '"x > 1"',
@@ -406,14 +406,14 @@ ROBOT_CASES = {
         "max_linear_acceleration: 0",
         5,
         "max_linear_acceleration",
-        "0 m/s^2 cannot be how hard it brakes",
+        "0 m/s^2 is below 0.01 m/s^2: the robot would take minutes and metres to stop",
     ),
     "a robot that cannot start turning": (
         "max_angular_acceleration: 3.0",
         "max_angular_acceleration: 0",
         7,
         "max_angular_acceleration",
-        "0 rad/s^2 cannot be how fast it starts turning",
+        "0 rad/s^2 is below 0.01 rad/s^2: the robot would take minutes to start turning",
     ),
     "a missing turn rate": (
         "max_angular_velocity: 1.2\n",

@@ -18,13 +18,15 @@ from tests.helpers.texts import SIZE_PAIR
 def test_a_candidate_that_fails_in_the_empty_world_fails_the_control_item_and_only_that(
     pytester: pytest.Pytester, placement_pairs: Path
 ) -> None:
-    # 2 s cannot take either robot 6 m: the failure is everywhere, not at any placement.
-    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 2.0"))
+    # 6 s cannot take either robot 6 m at move_base's 0.5 m/s: the failure is everywhere, not at
+    # any placement (and the baseline's too, which the report says).
+    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 6.0"))
     result = pytester.runpytest("-k", "size", "-rs", "--laser-seed=1")
     result.assert_outcomes(failed=2, skipped=3)
     result.stdout.fnmatch_lines(
         [
-            "the candidate fails without any obstacle: the change breaks the robot everywhere*",
+            "the baseline fails without any obstacle too: the world, its time limit or the "
+            "controller is at fault*",
             "  candidate  clearpath_lms1xx_gazebo: FAILED: *goal not reached: * m away at best",
             "SKIPPED [[]3[]] gate.lasertest.yaml:10: the candidate already fails without any "
             "obstacle: see size[[]no-obstacle[]]",
@@ -35,7 +37,7 @@ def test_a_candidate_that_fails_in_the_empty_world_fails_the_control_item_and_on
 def test_a_run_that_drives_leaves_no_physics_client_connected(
     pytester: pytest.Pytester, placement_pairs: Path
 ) -> None:
-    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 2.0"))
+    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 6.0"))
     result = pytester.runpytest("-k", "size and no-obstacle")
     result.assert_outcomes(failed=1)
     assert connected_clients() == 0
@@ -44,7 +46,7 @@ def test_a_run_that_drives_leaves_no_physics_client_connected(
 def test_under_the_regression_policy_a_failure_the_baseline_shares_passes(
     pytester: pytest.Pytester, placement_pairs: Path
 ) -> None:
-    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 2.0"))
+    placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 6.0"))
     result = pytester.runpytest("-k", "size and no-obstacle", "--laser-policy=regression")
     result.assert_outcomes(passed=1)
 

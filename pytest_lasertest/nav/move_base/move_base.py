@@ -42,7 +42,7 @@ from pytest_lasertest.nav.move_base.recovery import (
     Recovery,
     RotateInPlace,
 )
-from pytest_lasertest.nav.move_base.settings import NavigationSettings
+from pytest_lasertest.nav.move_base.settings import NavigationSettings, global_costmap_size
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 
 # base_local_planner's prunePlan drops the plan up to its first point this near the robot.
@@ -330,13 +330,9 @@ def _global_settings(settings: NavigationSettings, points: FloatArray) -> Costma
     """The global costmap: the local one's layers in a window of its own width, cut to what a
     run along `points` (P, 2) m can mark, clear and plan through; it keeps its rolling window's
     semantics, and saves moving 100 m of cells every time the robot moves one."""
-    common, move_base = settings.costmap, settings.move_base
     span = float(np.hypot(*(points[:, np.newaxis] - points[np.newaxis]).T).max())  # m
-    needed = 2.0 * (
-        span + move_base.planner_margin + common.inflation_radius + common.raytrace_range
-    )
     return dataclasses.replace(
-        common,
-        size=min(settings.global_costmap.size, needed),
+        settings.costmap,
+        size=global_costmap_size(settings, span),
         track_unknown_space=settings.global_costmap.track_unknown_space,
     )

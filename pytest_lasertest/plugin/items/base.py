@@ -1,8 +1,10 @@
 """What every item of a pair shares: its pairs file and pair, its markers, the run's session and
 options, a report location at the pair's line, and how its failures are shown.
 
-An item fails by raising `ItemFailure` with its whole report, written by `reports/`; any other
-exception is a bug in the plugin or the controller under test, and pytest shows its traceback.
+An item fails by raising `ItemFailure` with its whole report, written by `reports/`. A
+controller that breaks a drive (`ControllerError`: it raised, hung, or answered no command) fails
+the item with a short report naming it and what it did; `--fulltrace` shows the traceback
+instead. Any other exception is a bug in the plugin, and pytest shows its traceback.
 """
 
 from __future__ import annotations
@@ -13,9 +15,12 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import pytest
 
 from pytest_lasertest.pairsfile import Pair, PairsFile
+from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.plugin.options import LaserOptions
 from pytest_lasertest.plugin.session import LaserSession
+from pytest_lasertest.reports.drive import controller_error_report
 from pytest_lasertest.reports.formats import Replay
+from pytest_lasertest.sim.scenario import ControllerError
 
 if TYPE_CHECKING:
     from _pytest._code.code import TerminalRepr, TracebackStyle
@@ -52,8 +57,8 @@ class PairItem(pytest.Item):
 
     @property
     def replay(self) -> Replay:
-        """How to run this item again, as this run ran it."""
-        return Replay(self.nodeid, self.options.replay_options())
+        """How to run this item again, as this run ran it, from where pytest was started."""
+        return self.options.replay(self.nodeid, self.path, self.config.invocation_params.dir)
 
     def reportinfo(self) -> tuple[Path, int, str]:
         return self.path, self.pair.location.line - 1, self.name
@@ -61,6 +66,14 @@ class PairItem(pytest.Item):
     def repr_failure(
         self, excinfo: pytest.ExceptionInfo[BaseException], style: TracebackStyle | None = None
     ) -> str | TerminalRepr:
-        if isinstance(excinfo.value, ItemFailure):
-            return excinfo.value.report
+        error = excinfo.value
+        if isinstance(error, ItemFailure):
+            return error.report
+        controller = getattr(self, "controller", None)  # the items that drive have one
+        if (
+            isinstance(error, ControllerError)
+            and isinstance(controller, ControllerChoice)
+            and not self.config.getoption("fulltrace", False)
+        ):
+            return controller_error_report(error, self.pair, controller, self.replay)
         return super().repr_failure(excinfo, style)

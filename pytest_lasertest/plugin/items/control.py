@@ -7,14 +7,13 @@ places the pair's witnesses along (`LaserSession.plan`).
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
-from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.pairsfile import Pair
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.plugin.items.base import ItemFailure, PairItem
 from pytest_lasertest.reports.drive import drive_properties, drive_report
+from pytest_lasertest.reports.formats import Artifacts
 from pytest_lasertest.search.drives import PairDrive
 
 CONTROL = "no-obstacle"
@@ -42,27 +41,55 @@ class ControlItem(PairItem):
             *drive_properties(drives),
         ]
         if drives.fails(self.options.policy):
-            artifacts = [f"  artifact   {display_path(path)}" for path in self._write(drives)]
+            artifacts = self._write(drives).lines("artifact", self.replay.here)
+            headline, details = _verdict(drives)
             raise ItemFailure(
                 drive_report(
-                    "the candidate fails without any obstacle: the change breaks the robot "
-                    "everywhere, not only where the scanners differ",
+                    headline,
                     self.pair,
                     self.controller,
                     drives,
-                    artifacts,
+                    [*details, *artifacts],
                     self.options.policy,
                     self.replay,
                 )
             )
 
-    def _write(self, drives: PairDrive) -> tuple[Path, ...]:
+    def _write(self, drives: PairDrive) -> Artifacts:
         """The failure's picture, empty Gazebo world and numbers, if the run asked for them."""
         options = self.options
         if options.artifacts is None:
-            return ()
+            return Artifacts()
         from pytest_lasertest.artifacts.evidence import write_control_evidence
 
         return write_control_evidence(
             options.artifacts, self.nodeid, self.spec, self.pair, drives, options.recorded()
         )
+
+
+def _verdict(drives: PairDrive) -> tuple[str, list[str]]:
+    """The headline of a failing control item, and a fix when the baseline fails as well: then
+    the world, its time limit or the controller is at fault, not the scanner change."""
+    baseline = drives.baseline
+    if baseline.passed:
+        return (
+            "the candidate fails without any obstacle: the change breaks the robot everywhere, "
+            "not only where the scanners differ",
+            [],
+        )
+    headline = (
+        "the baseline fails without any obstacle too: the world, its time limit or the "
+        "controller is at fault, not the scanner change"
+    )
+    verdicts, limit = baseline.verdicts, baseline.scenario.time_limit
+    if verdicts.stuck.passed and verdicts.collision.passed:
+        fix = (
+            f"the baseline robot was still on its way when world.time_limit ({limit:g} s) ran "
+            f"out, {verdicts.goal.nearest:.2f} m from the goal: raise time_limit"
+        )
+    else:
+        fix = (
+            "the baseline robot cannot drive the route in the empty world: check the route, "
+            "the robot's navigation parameters and the controller with the baseline scanner"
+        )
+    return headline, [f"  fix        {fix}"]

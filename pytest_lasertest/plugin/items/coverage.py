@@ -3,11 +3,10 @@ baseline scanned, on the same robot (`model/coverage.py`)."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from pytest_lasertest.model.coverage import CoverageComparison, compare_coverage
 from pytest_lasertest.plugin.items.base import ItemFailure, PairItem
 from pytest_lasertest.reports.coverage import coverage_properties, coverage_report
+from pytest_lasertest.reports.formats import Artifacts
 
 
 class CoverageItem(PairItem):
@@ -30,11 +29,11 @@ class CoverageItem(PairItem):
             artifact = self._write_evidence(comparison)
             raise ItemFailure(coverage_report(self.pair, comparison, self.replay, artifact))
 
-    def _write_evidence(self, comparison: CoverageComparison) -> Path | None:
+    def _write_evidence(self, comparison: CoverageComparison) -> Artifacts:
         """The numbers of the loss, if the run asked for artifacts."""
         options = self.options
         if options.artifacts is None:
-            return None
+            return Artifacts()
         from pytest_lasertest.artifacts.evidence import evidence_header, write_coverage_evidence
 
         header = evidence_header(self.nodeid, self.spec, self.pair, options.recorded())

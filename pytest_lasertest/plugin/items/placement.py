@@ -24,6 +24,7 @@ from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.plugin.items.base import ItemFailure, PairItem
 from pytest_lasertest.plugin.items.control import ControlItem
+from pytest_lasertest.plugin.options import unwritable
 from pytest_lasertest.reports.failure import (
     PlacementFailure,
     failure_properties,
@@ -32,6 +33,7 @@ from pytest_lasertest.reports.failure import (
     search_properties,
     witness_properties,
 )
+from pytest_lasertest.reports.formats import Artifacts
 from pytest_lasertest.search.offsets import OffsetBox
 from pytest_lasertest.search.trials import TrialFailed, Trials
 from pytest_lasertest.search.witness import search_witness
@@ -85,7 +87,7 @@ class SearchItem(PairItem):
             options.budget,
             key=self.nodeid,
             seed=self._seed(),
-            database=self.config.rootpath / ".hypothesis" / "examples",
+            database=self._database(),
         )
         # Hypothesis's pytest plugin shows this under --hypothesis-show-statistics.
         self.hypothesis_statistics = found.statistics
@@ -111,12 +113,14 @@ class SearchItem(PairItem):
             tuple(str(note) for note in getattr(failed, "__notes__", ())),
             self.options.seed,
             self.options.recorded(),
+            # Hypothesis drops what it cannot save without a word: say so, or the rerun misleads.
+            unwritable(self._database()),
         )
         raise ItemFailure(failure_report(failure, self.replay, self._write_failure(failure)))
 
     def _reject(self, witness: Witness, verification: Verification) -> None:
         """Fail the item with the witness the solver should not have returned."""
-        artifact = None
+        artifacts = Artifacts()
         options = self.options
         if options.artifacts is not None:
             from pytest_lasertest.artifacts.evidence import (
@@ -125,21 +129,25 @@ class SearchItem(PairItem):
             )
 
             header = evidence_header(self.nodeid, self.spec, self.pair, options.recorded())
-            artifact = write_rejection_evidence(
+            artifacts = write_rejection_evidence(
                 options.artifacts, self.nodeid, witness, verification, header
             )
-        report = rejection_report(self.pair, witness, verification, self.replay, artifact)
+        report = rejection_report(self.pair, witness, verification, self.replay, artifacts)
         raise ItemFailure(report)
+
+    def _database(self) -> Path:
+        """Where Hypothesis keeps the failures it found, to replay them first next run."""
+        return self.config.rootpath / ".hypothesis" / "examples"
 
     def _seed(self) -> int:
         """The search's seed: the run's, made the item's own by its node id."""
         digest = hashlib.sha256(f"{self.options.seed}:{self.nodeid}".encode()).digest()
         return int.from_bytes(digest[:4], "big")
 
-    def _write_failure(self, failure: PlacementFailure) -> tuple[Path, ...]:
+    def _write_failure(self, failure: PlacementFailure) -> Artifacts:
         """The failure's artifacts, if the run asked for them."""
         if self.options.artifacts is None:
-            return ()
+            return Artifacts()
         from pytest_lasertest.artifacts.evidence import write_evidence
 
         return write_evidence(self.options.artifacts, failure)
