@@ -348,7 +348,9 @@ def _box_segment_clearances(
     for s1, s2 in ((1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)):
         numerators.append(s2 * y0 - s1 * x0 + a - b)
         denominators.append(s1 * dx - s2 * dy)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    # A segment (nearly) parallel to a side or a diagonal has no kink there, or one so far
+    # off that the division overflows: either is not finite, and its candidate is the start.
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         kinks = np.hstack(numerators) / np.hstack(denominators)
     lower, upper = starts[:, None], ends[:, None]
     candidates = np.hstack([lower, upper, np.where(np.isfinite(kinks), kinks, lower)])

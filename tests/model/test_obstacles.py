@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import numpy.typing as npt
@@ -457,3 +458,14 @@ def test_a_segment_inside_a_box_crosses_the_box_shrunk_by_half_its_depth(seed: i
             assert crosses(one_of(segments, int(i)), box.grown(clearances[i] / 2))[0]
             crossings += 1
     assert crossings > 20
+
+
+def test_a_segment_all_but_parallel_to_a_box_side_gives_its_clearance_without_a_warning() -> None:
+    box = Box(x=0.0, y=0.0, yaw=0.0, length=1.0, width=1.0, height=1.0)
+    # Along y = 1, off by 1e-310 rad: a kink with a denominator that overflows the division.
+    origins = np.array([[-3.0, 1.0]])
+    directions = np.array([[1.0, 1e-310]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        clearance = segment_clearances(origins, directions, np.zeros(1), np.full(1, 6.0), box)
+    assert clearance == pytest.approx([0.5])
