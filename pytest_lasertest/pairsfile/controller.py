@@ -100,7 +100,7 @@ def _from_registry(node: SpecNode, name: str) -> ControllerFactory:
             f"fix or reinstall the package that registers it"
             f"{f' ({point.dist.name})' if point.dist else ''}",
         ) from None
-    return _factory(node, target, f"{name!r} ({point.value})")
+    return checked_factory(node, target, f"{name!r} ({point.value})")
 
 
 def _from_module(node: SpecNode, text: str) -> ControllerFactory:
@@ -120,7 +120,7 @@ def _from_module(node: SpecNode, text: str) -> ControllerFactory:
                 _attribute_hint(part, target),
             )
         target = getattr(target, part)
-    return _factory(node, target, text)
+    return checked_factory(node, target, text)
 
 
 def _import(node: SpecNode, name: str) -> ModuleType:
@@ -204,10 +204,11 @@ def _raised(node: SpecNode, name: str, error: BaseException) -> SpecError:
     )
 
 
-def _factory(node: SpecNode, target: object, label: str) -> ControllerFactory:
+def checked_factory(node: SpecNode, target: object, label: str) -> ControllerFactory:
     """`target`, checked to be callable with (robot, route), not from Python's standard library,
-    and, if it is a class, to have an `observe` callable with (scan, odometry, time). What
-    cannot be checked here (what a function returns) the first drive checks."""
+    and, if it is a class, to have an `observe` callable with (scan, odometry, time); an error
+    points at `node`. What cannot be checked here (what a function returns) the first drive
+    checks."""
     if not callable(target):
         raise node.error(f"{label} is {_kind(target)}, not a callable", f"name {_FACTORY}")
     library = _standard_library(target)

@@ -9,15 +9,17 @@ the default.
 
 from __future__ import annotations
 
-from typing import cast
-
 import pytest
 
 from pytest_lasertest.inputs.errors import Location, SpecError
+from pytest_lasertest.inputs.node import SpecNode
 from pytest_lasertest.model.sensor import same_sensing
-from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
-from pytest_lasertest.pairsfile.controller import ControllerChoice, default_controller
+from pytest_lasertest.pairsfile.controller import (
+    ControllerChoice,
+    checked_factory,
+    default_controller,
+)
 from pytest_lasertest.plugin.items.control import ControlItem
 from pytest_lasertest.plugin.items.coverage import CoverageItem
 from pytest_lasertest.plugin.items.pinned import pinned_items
@@ -88,9 +90,12 @@ class PairFile(pytest.File):
                 "return a callable that takes (robot, route) and returns a controller, or None "
                 "for the default",
             )
-        return ControllerChoice(
-            _qualified_name(factory), f"from the {HOOK} hook", cast(ControllerFactory, factory)
-        )
+        name = _qualified_name(factory)
+        # Checked as a `controller:` is; the hook has no line of its own, so the error points
+        # at the pairs file's first.
+        node = SpecNode(factory, Location(self.path, 1), "controller")
+        checked = checked_factory(node, factory, f"the {HOOK} hook's factory {name}")
+        return ControllerChoice(name, f"from the {HOOK} hook", checked)
 
 
 def _qualified_name(factory: object) -> str:

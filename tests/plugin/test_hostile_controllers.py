@@ -281,6 +281,31 @@ def test_a_factory_that_cannot_make_a_controller_is_a_collection_error_at_its_li
     assert_one_clean_error(result, CONTROLLER_LINE, "controller", error)
 
 
+HOOKED = {
+    "print from the standard library": (
+        "import builtins\nFACTORY = builtins.print",
+        "the pytest_lasertest_make_controller hook's factory builtins:print comes from Python's "
+        "standard library (module 'builtins'), which makes no controller",
+    ),
+    "a class whose observe takes too little": (
+        f"{ODD_CLASSES}\nFACTORY = Short",
+        "the pytest_lasertest_make_controller hook's factory conftest:Short.observe cannot be "
+        "called with (scan, odometry, time): too many positional arguments",
+    ),
+}
+
+
+@pytest.mark.parametrize(("source", "problem"), HOOKED.values(), ids=HOOKED.keys())
+def test_a_factory_a_conftest_hook_returns_is_checked_as_a_controller_line_is(
+    pytester: pytest.Pytester, source: str, problem: str
+) -> None:
+    hook = "\n\ndef pytest_lasertest_make_controller(config, spec):\n    return FACTORY\n"
+    pytester.makeconftest(source + hook)
+    (pytester.path / "gate.lasertest.yaml").write_text(SIZE_PAIR)
+    result = pytester.runpytest()
+    assert_one_clean_error(result, 1, "controller", Case("", "", 1, "controller", problem, ""))
+
+
 UNUSUAL_BUT_VALID = """\
 import functools
 
