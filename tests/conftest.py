@@ -11,13 +11,16 @@ from pathlib import Path
 
 import hypothesis  # noqa: F401  (see below)
 import pytest
+import xacro.substitution_args  # noqa: F401  (see below)
 
 import pytest_lasertest.plugin.collect  # (see below)
 import pytest_lasertest.solver.plan  # noqa: F401  (see below)
 
-# hypothesis, pytest_lasertest.plugin.collect and the solver (with z3) are imported only to stay
-# loaded across pytester runs: in-process runs drop the modules they imported, numpy cannot be
-# imported twice in one process, and Hypothesis's plugin would re-import hypothesis on every run.
+# hypothesis, pytest_lasertest.plugin.collect, the solver (with z3) and xacro are imported only to
+# stay loaded across pytester runs: in-process runs drop the modules they imported, numpy cannot
+# be imported twice in one process, Hypothesis's plugin would re-import hypothesis on every run,
+# and a run that first imports xacro leaves its submodules half dropped, so that a later run's
+# `$(find)` reaches a substitution_args module the expansion did not patch.
 pytest_plugins = ["pytester"]
 
 # The helpers assert too (assert_one_clean_error, the corpus's assert_profile): rewrite their

@@ -14,7 +14,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from pytest_lasertest.descriptions.absent import no_laser_error
-from pytest_lasertest.descriptions.files import UnreadableFile
 from pytest_lasertest.descriptions.laser_block import (
     Locate,
     check_planar,
@@ -26,6 +25,7 @@ from pytest_lasertest.descriptions.mounts import Mount, sdf_mount, urdf_mount
 from pytest_lasertest.descriptions.xacro_expand import FileReader, expand_xacro, origin
 from pytest_lasertest.descriptions.xmlfile import XmlElement, parse_xml
 from pytest_lasertest.inputs.errors import Location, SpecError
+from pytest_lasertest.inputs.files import UnreadableFile
 from pytest_lasertest.inputs.node import SpecNode
 
 

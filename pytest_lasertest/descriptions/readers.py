@@ -5,9 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from pytest_lasertest.descriptions.files import UnreadableFile, read_regular_file
 from pytest_lasertest.descriptions.gitref import GitError, GitRevision, revision_holding
 from pytest_lasertest.inputs.errors import display_path
+from pytest_lasertest.inputs.files import UnreadableFile, read_regular_file
 
 
 @dataclass(frozen=True)

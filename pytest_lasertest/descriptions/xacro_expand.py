@@ -26,10 +26,10 @@ from pathlib import Path
 from typing import IO, Any, Protocol
 from xml.sax.saxutils import quoteattr
 
-from pytest_lasertest.descriptions.files import UnreadableFile
 from pytest_lasertest.descriptions.xacro_guard import ExpansionGuard
 from pytest_lasertest.descriptions.xmlfile import XmlElement, parse_xml
 from pytest_lasertest.inputs.errors import Location, SpecError
+from pytest_lasertest.inputs.files import UnreadableFile
 
 XACRO_FIX = "run `xacro FILE` by hand to see the problem, then fix the description"
 # The attribute that marks each element xacro reads with the file and line that wrote it.

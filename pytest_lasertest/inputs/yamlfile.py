@@ -8,12 +8,20 @@ import yaml
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
 from pytest_lasertest.inputs.errors import Location, SpecError
+from pytest_lasertest.inputs.files import FileKind, UnreadableFile, read_regular_file
 
 _MERGE_TAG = "tag:yaml.org,2002:merge"
 # The files read here (pairs files, robots, navigation parameters, catalogue models) are a page
 # or two. Beyond these, a file is not one of them, and parsing it would take long or recurse
 # past Python's stack.
 MAX_BYTES = 1_000_000  # about 20,000 lines
+# A pipe or a device named as a pairs, robot or navigation file is refused before it is read.
+YAML_FILE = FileKind(
+    "a YAML file",
+    MAX_BYTES,
+    "name the YAML file itself, saved on disk",
+    "check that this is the file you meant: a pairs, robot, navigation or scanner file",
+)
 MAX_DEPTH = 50  # mappings and lists nested in each other; a pairs file needs about 6
 
 
@@ -216,12 +224,14 @@ def _size(path: Path) -> int:
 def read_text(path: Path) -> str:
     """The file's text as UTF-8, or a SpecError that says why it cannot be read."""
     try:
-        data = path.read_bytes()
+        data = read_regular_file(path, YAML_FILE)
     except FileNotFoundError:
         raise SpecError(
             Location(path, 1), "", "the file does not exist", "check the path and its spelling"
         ) from None
-    except OSError as error:
+    except UnreadableFile as error:
+        raise SpecError(Location(path, 1), "", error.problem, error.fix) from None
+    except OSError as error:  # failing while reading, past the checks
         raise SpecError(
             Location(path, 1), "", f"the file cannot be read: {error.strerror}", "check the path"
         ) from None

@@ -14,12 +14,12 @@ from pathlib import Path
 import pytest
 import xacro
 
-from pytest_lasertest.descriptions.files import read_regular_file
 from pytest_lasertest.descriptions.lasers import DescriptionFile, read_lasers
 from pytest_lasertest.descriptions.readers import WorkingTree
 from pytest_lasertest.descriptions.xacro_expand import ORIGIN, expand_xacro
 from pytest_lasertest.descriptions.xmlfile import XmlElement, parse_xml
 from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.inputs.files import read_regular_file
 from tests.helpers.git import commit_everything, git
 from tests.helpers.runs import assert_one_clean_error
 from tests.helpers.texts import PAIRS, ROBOT

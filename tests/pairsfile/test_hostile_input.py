@@ -6,6 +6,8 @@ refused; a time limit no robot can meet is refused, and one the baseline fails t
 
 from __future__ import annotations
 
+import os
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -410,6 +412,22 @@ ROBOT_CASES = {
         "the scanner is mounted 5 m below the ground (z = -5 m)",
     ),
 }
+
+
+def test_a_fifo_named_as_a_pairs_file_is_refused_before_it_is_read(tmp_path: Path) -> None:
+    pairs = tmp_path / "gate.lasertest.yaml"
+    os.mkfifo(pairs)
+    # Should the reader block on the FIFO, a writer comes after 30 s and the test fails.
+    watchdog = threading.Timer(30.0, lambda: os.close(os.open(pairs, os.O_WRONLY)))
+    watchdog.start()
+    try:
+        with pytest.raises(SpecError) as raised:
+            load_pairs_file(pairs)
+    finally:
+        watchdog.cancel()
+    assert raised.value.location.path == pairs
+    assert "is a FIFO (named pipe), which would wait for a writer for ever" in raised.value.problem
+    assert raised.value.fix == "name the YAML file itself, saved on disk"
 
 
 @pytest.mark.parametrize("case", ROBOT_CASES.values(), ids=ROBOT_CASES.keys())
