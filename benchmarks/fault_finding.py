@@ -11,7 +11,9 @@ it, at the same number of simulated runs:
 Every simulated run is counted, baseline runs and the check below included. A placement kills
 the cell when the candidate fails under the fault, the baseline passes under it, and the
 candidate passes without it: the fault, not the new scanner alone, is what fails the robot. A
-method stops at its first kill. The equivalent mutant must never be killed.
+method stops at its first kill: for the gate, at the trial of the item that would have failed
+there (the runs the item would go on to spend shrinking it are not counted); each check without
+the fault is counted for both. The equivalent mutant must never be killed.
 
 It prints a row per mutant and method (cells killed of those tried, per seed), then
 `mutants killed: gate G of M, random R of M; killed cells per 1000 simulations: gate g, random r`
@@ -42,7 +44,7 @@ from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.search.budgets import BUDGETS
 from pytest_lasertest.search.drives import RunCache, scenario
 from pytest_lasertest.search.plans import avoid_for, pair_scene, plan_scene, route_path
-from pytest_lasertest.search.trials import Setting
+from pytest_lasertest.search.trials import Setting, TrialResult
 from pytest_lasertest.search.witness import passed_by_baseline, search_witness
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Run, Scenario
@@ -75,16 +77,21 @@ class Outcome:
 
 
 class Counter(RunCache):
-    """A run cache of its own per method and cell, counting the runs it simulates."""
+    """A run cache of its own per method and cell, counting the runs it simulates and
+    remembering how many had been simulated when each run was."""
 
     def __init__(self) -> None:
         super().__init__(size=100_000)
         self.simulations = 0
+        self.made: dict[int, int] = {}  # id of a run: simulations up to and including it
 
     def run(self, scenario: Scenario, controller: ControllerChoice, client: PhysicsClient) -> Run:
-        if not self.knows(scenario, controller):
+        fresh = not self.knows(scenario, controller)
+        run = super().run(scenario, controller, client)
+        if fresh:
             self.simulations += 1
-        return super().run(scenario, controller, client)
+            self.made[id(run)] = self.simulations
+        return run
 
 
 class Bench:
@@ -124,12 +131,14 @@ class Search:
             return False
         return self.drive(self.pair.candidate.profile, obstacles, self.clean).passed
 
-    def outcome(self, obstacles: tuple[Obstacle, ...] | None) -> Outcome:
-        """The search's outcome: killed by `obstacles` (() for none), or not killed (None)."""
+    def outcome(
+        self, obstacles: tuple[Obstacle, ...] | None, simulations: int | None = None
+    ) -> Outcome:
+        """The search's outcome: killed by `obstacles` (() for none), or not killed (None),
+        after `simulations` (all the cache simulated, unless given)."""
         killer = "" if obstacles is None else "; ".join(o.describe() for o in obstacles)
-        return Outcome(
-            self.cell, self.method, obstacles is not None, self.cache.simulations, killer
-        )
+        spent = self.cache.simulations if simulations is None else simulations
+        return Outcome(self.cell, self.method, obstacles is not None, spent, killer)
 
 
 def gate(bench: Bench, cell: Cell) -> Outcome:
@@ -148,6 +157,7 @@ def gate(bench: Bench, cell: Cell) -> Outcome:
     avoid = passed_by_baseline(setting, avoid_for(spec, scene), spec.settings.witnesses)
     for witness in (*avoid, *plan_scene(spec, pair, scene).witnesses()):
         key = f"{cell.pair}[{witness.id}]"
+        before = search.cache.simulations
         found = search_witness(
             setting,
             scene,
@@ -159,11 +169,21 @@ def gate(bench: Bench, cell: Cell) -> Outcome:
             seed=_seed(cell, key),
             database=None,
         )
-        for result in found.trials.results.values():
+        searched = search.cache.simulations
+        for result in found.trials.results.values():  # in the order they were tried
             obstacles = (result.placement.obstacle,)
             if search.kills(obstacles, result.candidate, result.baseline):
-                return search.outcome(obstacles)
+                checks = search.cache.simulations - searched  # the runs without the fault
+                return search.outcome(obstacles, _tried_by(search.cache, result, before) + checks)
     return search.outcome(None)
+
+
+def _tried_by(cache: Counter, result: TrialResult, before: int) -> int:
+    """Simulations up to the trial `result` of an item that began after `before`: the item
+    would have failed there, and what it simulated after (the shrinking) is not counted, as
+    random placement stops at its kill."""
+    runs = (result.candidate, result.baseline)
+    return max(before, *(cache.made.get(id(run), 0) for run in runs if run is not None))
 
 
 def random_placements(bench: Bench, cell: Cell, method: str, budget: int) -> Outcome:
@@ -252,16 +272,17 @@ def main() -> None:
         for done in pool.imap_unordered(_work, cells):
             outcomes += done
             print(
-                f"  {done[0].cell}: "
-                + ", ".join(
-                    f"{o.method} {'KILL' if o.killed else '-'} ({o.simulations})" for o in done
-                ),
-                file=sys.stderr,
-                flush=True,
+                f"  {done[0].cell}: {', '.join(map(_progress, done))}", file=sys.stderr, flush=True
             )
     print(_table(outcomes, args.mutants, args.seeds))
     print(f"({time.perf_counter() - began:.0f} s)")
     print(_last_line(outcomes, args.mutants, args.seeds))
+
+
+def _progress(outcome: Outcome) -> str:
+    """What one method did in one cell, and what killed it."""
+    killed = f"KILL by {outcome.killer or 'no obstacle'}" if outcome.killed else "-"
+    return f"{outcome.method} {killed} ({outcome.simulations})"
 
 
 def _table(outcomes: list[Outcome], mutants: list[str], seeds: list[int]) -> str:

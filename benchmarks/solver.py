@@ -4,10 +4,16 @@ Prints the median time per verified witness on 720-beam and 2880-beam pairs that
 sensing attribute; the time to prove that identical scanners have no witness; verified witnesses
 per second against a rejection sampler (uniform placements, the same verifier, the same time
 budget) on the paper's size pair; and checks again, by ray casting, every witness of the examples
-and of a random sample of catalogue pairs. The last line reads
+and of a random sample of catalogue pairs. Then the matrix: every ordered pair of distinct
+catalogue scanners, each on the Husky's mount, planned in both directions on the paper's 10 m
+straight route and on the route that turns; one line per direction left undecided (neither sat
+nor unsat: route, baseline -> candidate, direction, the first 200 characters of the plan's
+explanation), then `undecided: U of N directions; median plan: M ms; p95 plan: P ms`, the times
+being those of the pair plans (both directions of one scene). The last line reads
 `ms per witness at 720 beams: A; at 2880 beams: B; speed-up over rejection sampling: S`.
 
     python benchmarks/solver.py [--catalogue-pairs 200] [--budget 20] [--seed 0]
+                                [--matrix-models 13]
 """
 
 from __future__ import annotations
@@ -18,13 +24,14 @@ import math
 import statistics
 import time
 from collections.abc import Iterator
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from pytest_lasertest.model.geometry import Point2D, Pose2D, Pose3D
 from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
-from pytest_lasertest.model.plan import Witness
+from pytest_lasertest.model.plan import DirectionPlan, Witness
 from pytest_lasertest.model.route import nominal_path, scan_times
 from pytest_lasertest.model.verify import DIRECTIONS, Direction, Placement, Scene, readings, verify
 from pytest_lasertest.pairsfile import load_pairs_file
@@ -37,9 +44,11 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
 ROBOT = PAPER.robot
 SETTINGS = SearchSettings(witnesses=3, min_size=PAPER.settings.min_obstacle_size)
-STRAIGHT = nominal_path(PAPER.world.start, PAPER.world.route, 0.5, 1.0)
+STRAIGHT = nominal_path(PAPER.world.start, PAPER.world.route, 0.5, 1.0)  # 10 m, straight ahead
 TURNING = nominal_path(Pose2D(0.0, 0.0, 0.0), (Point2D(2.0, 0.0), Point2D(2.0, 6.0)), 0.5, 1.0)
 HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.308), (math.pi, 0.0, 0.0))
+ROUTES = {"straight": STRAIGHT, "turning": TURNING}  # the matrix's routes, by the name it prints
+EXPLANATION_CHARS = 200  # how much of an undecided direction's explanation the matrix prints
 
 
 def main() -> None:
@@ -47,7 +56,15 @@ def main() -> None:
     parser.add_argument("--catalogue-pairs", type=int, default=200)
     parser.add_argument("--budget", type=float, default=20.0, help="s per side, sampler race")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument(
+        "--matrix-models",
+        type=int,
+        default=None,
+        help="how many catalogue models (the first, by key) enter the matrix; all by default",
+    )
     args = parser.parse_args()
+    if args.matrix_models is not None and args.matrix_models < 2:
+        parser.error("--matrix-models needs at least 2 models to make a pair")
     per_witness = {beams: median_ms_per_witness(beams) for beams in (720, 2880)}
     identical_proof()
     speed_up = sampler_race(args.budget, np.random.default_rng(args.seed))
@@ -57,6 +74,7 @@ def main() -> None:
     print(f"verified again by ray casting: {checked} of {total + more_total} witnesses")
     if checked != total + more_total:
         raise SystemExit("some witness failed the exact verification")
+    print_matrix(matrix(args.matrix_models))
     print(
         f"ms per witness at 720 beams: {per_witness[720]:.1f}; "
         f"at 2880 beams: {per_witness[2880]:.1f}; speed-up over rejection sampling: {speed_up:.0f}"
@@ -67,16 +85,18 @@ def variants(beams: int) -> Iterator[tuple[str, Scene]]:
     """Pairs of the Husky's LMS1xx at `beams` beams that differ in one sensing attribute each."""
     base = dataclasses.replace(PAPER.pairs[1].baseline.profile, samples=beams)
     (x, y, z), rpy = base.pose.xyz, base.pose.rpy
-    changes = {
-        "range 10 -> 5 m": {"range_max": 5.0},
-        "samples halved": {"samples": beams // 2},
-        "minimum range 0.1 -> 0.8 m": {"range_min": 0.8},
-        "update rate 50 -> 10 Hz": {"update_rate": 10.0},
-        "mounted 0.1 m higher": {"pose": Pose3D((x, y, z + 0.1), rpy)},
-        "mounted 0.15 m further back": {"pose": Pose3D((x - 0.15, y, z), rpy)},
+    changed = {
+        "range 10 -> 5 m": dataclasses.replace(base, range_max=5.0),
+        "samples halved": dataclasses.replace(base, samples=beams // 2),
+        "minimum range 0.1 -> 0.8 m": dataclasses.replace(base, range_min=0.8),
+        "update rate 50 -> 10 Hz": dataclasses.replace(base, update_rate=10.0),
+        "mounted 0.1 m higher": dataclasses.replace(base, pose=Pose3D((x, y, z + 0.1), rpy)),
+        "mounted 0.15 m further back": dataclasses.replace(
+            base, pose=Pose3D((x - 0.15, y, z), rpy)
+        ),
     }
-    for name, change in changes.items():
-        yield name, Scene(base, dataclasses.replace(base, **change), ROBOT, STRAIGHT)
+    for name, candidate in changed.items():
+        yield name, Scene(base, candidate, ROBOT, STRAIGHT)
     narrow = dataclasses.replace(base, min_angle=-1.0, max_angle=1.0)
     yield "field of view +-1.57 -> +-1 rad, turning route", Scene(base, narrow, ROBOT, TURNING)
 
@@ -225,10 +245,66 @@ def verify_catalogue(count: int, seed: int) -> tuple[int, int]:
     return verified, total
 
 
+@dataclass(frozen=True)
+class PairTiming:
+    """One pair plan of the matrix: both directions of one scene, and how long they took."""
+
+    route: str  # a key of ROUTES
+    baseline: str  # catalogue key
+    candidate: str  # catalogue key
+    ms: float  # both directions together
+    plans: tuple[DirectionPlan, ...]
+
+
+def matrix(models: int | None = None) -> list[PairTiming]:
+    """Every ordered pair of distinct catalogue scanners (the first `models` by key, or all),
+    both on the Husky's mount, planned in both directions on each route of ROUTES."""
+    catalogue = load_catalogue()
+    keys = sorted(catalogue.entries)[:models]
+    profiles = {key: catalogue.entries[key].profile(HUSKY_MOUNT) for key in keys}
+    timings = []
+    for route, path in ROUTES.items():
+        for baseline in keys:
+            for candidate in keys:
+                if baseline == candidate:
+                    continue
+                scene = Scene(profiles[baseline], profiles[candidate], ROBOT, path)
+                start = time.perf_counter()
+                plans = tuple(plan_direction(scene, d, SETTINGS) for d in DIRECTIONS)
+                ms = (time.perf_counter() - start) * 1000
+                timings.append(PairTiming(route, baseline, candidate, ms, plans))
+    return timings
+
+
+def print_matrix(timings: list[PairTiming]) -> None:
+    """A line per undecided direction, then how many there are and how long pair plans took:
+    the median, and the 95th percentile as `statistics.quantiles(times, n=20)[-1]` (its
+    default, exclusive method)."""
+    undecided = total = 0
+    for timing in timings:
+        for plan in timing.plans:
+            total += 1
+            if plan.status in ("sat", "unsat"):
+                continue
+            undecided += 1
+            print(
+                f"undecided, {timing.route}, {timing.baseline} -> {timing.candidate}, "
+                f"{plan.direction}: {plan.explanation[:EXPLANATION_CHARS]}"
+            )
+    times = [timing.ms for timing in timings]
+    median, p95 = statistics.median(times), statistics.quantiles(times, n=20)[-1]
+    print(
+        f"undecided: {undecided} of {total} directions; "
+        f"median plan: {median:.0f} ms; p95 plan: {p95:.0f} ms"
+    )
+
+
 def checked(scene: Scene, witness: Witness) -> bool:
     """The verifier's verdict, and the readings themselves: the detector reads the obstacle at
     the anchor, the misser reads nothing of it in range at any scan up to `until`."""
     placement = witness.placement
+    # Only placements both scanners read lack a direction, and no plan's witness is one.
+    assert placement.direction is not None
     detector, misser = scene.detector(placement.direction), scene.misser(placement.direction)
     anchor = scene.path.poses_at(np.array([placement.anchor]))
     seen = np.isfinite(readings(detector, anchor, placement.obstacle)).any()

@@ -27,7 +27,7 @@ from pytest_lasertest.pairsfile.world import World, read_world
 
 SECTIONS = ("robot", "world", "settings", "constraints", "controller", "navigation", "pairs")
 REQUIRED_SECTIONS = ("robot", "world", "pairs")
-SETTINGS_KEYS = ("min_obstacle_size", "max_obstacle_size", "witnesses")
+SETTINGS_KEYS = ("min_obstacle_size", "max_obstacle_size", "witnesses", "solver_rlimit")
 PAIR_KEYS = ("baseline", "candidate", "placements")
 # Each witness is a test item of its own, with a solver search and a round of driving.
 MAX_WITNESSES = 20
@@ -43,6 +43,15 @@ OBSTACLE_SIZE = Bounds(
     "the verifier confirms a reading only 5 mm inside an obstacle, so a thinner one is never read",
     "an obstacle that wide is a wall, and the solver searches sizes up to it",
 )
+# Z3's resource limit per query (`settings.solver_rlimit`): a count of its own steps, the same on
+# every machine, where wall time would make the plan depend on the machine's load.
+RLIMIT = Bounds(
+    1,
+    5_000_000_000,
+    "",
+    "Z3 stops every query at once",
+    "at a thousand times the default (5000000) one query can take hours",
+)
 # Pair names become part of test ids (`file::NAME[...]`), which `::`, `[` and spaces would break.
 PAIR_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*\Z")
 
@@ -54,6 +63,7 @@ class Settings:
     min_obstacle_size: float = 0.05  # m, the thinnest obstacle the robot must see
     max_obstacle_size: float = 1.0  # m, the widest obstacle placed
     witnesses: int = 3  # per pair and direction: one test item each
+    solver_rlimit: int | None = None  # Z3's resource limit per query; None: the solver's own
 
     @property
     def obstacle_sizes(self) -> tuple[float, float]:
@@ -166,7 +176,12 @@ def _read_settings(node: SpecNode | None) -> Settings:
                 f"than {MAX_WITNESSES} would each cost a solver search and a round of driving",
                 f"write a number from 1 to {MAX_WITNESSES}",
             )
-    return Settings(smallest, largest, witnesses)
+    return Settings(smallest, largest, witnesses, _rlimit(fields.get("solver_rlimit")))
+
+
+def _rlimit(node: SpecNode | None) -> int | None:
+    """Z3's resource limit per query, if the pairs file sets one."""
+    return None if node is None else node.whole_number_in(RLIMIT)
 
 
 def _size(node: SpecNode | None, default: float) -> float:

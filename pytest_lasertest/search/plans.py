@@ -9,6 +9,8 @@ nominal speed and turn rate. The solver, and with it Z3, is imported on the firs
 
 from __future__ import annotations
 
+import dataclasses
+
 from pytest_lasertest.model.avoid import avoid_witnesses
 from pytest_lasertest.model.plan import PairPlan, Witness
 from pytest_lasertest.model.route import NominalPath, nominal_path, timed_to
@@ -34,6 +36,8 @@ def plan_scene(spec: PairsFile, pair: Pair, scene: Scene) -> PairPlan:
         max_size=spec.settings.max_obstacle_size,
         constraints=spec.constraints,
     )
+    if spec.settings.solver_rlimit is not None:
+        settings = dataclasses.replace(settings, rlimit=spec.settings.solver_rlimit)
     return plan_pair(pair.name, scene, settings)
 
 

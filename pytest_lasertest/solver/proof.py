@@ -109,7 +109,9 @@ def prove(
                 return Proof("sat", "", outcome)
             if outcome.verdict == "unknown":
                 return Proof(
-                    "unknown", f"Z3 could not decide at t = {anchor:.2f} s ({outcome.reason})"
+                    "unknown",
+                    f"Z3 could not decide at t = {anchor:.2f} s within its rlimit "
+                    f"({settings.rlimit:,} per query; {outcome.reason})",
                 )
             reasons.setdefault(way, _why(scene, direction, settings, way, outcome))
     return Proof("unsat", _sentence(scene, direction, anchor, reasons))

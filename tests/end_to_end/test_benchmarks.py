@@ -2,15 +2,22 @@
 
 from __future__ import annotations
 
+import importlib
 import re
 import subprocess
 import sys
+from types import SimpleNamespace
+
+import pytest
 
 from tests.helpers import REPO
 
 SOLVER_LINE = re.compile(
     r"ms per witness at 720 beams: [\d.]+; at 2880 beams: [\d.]+; "
     r"speed-up over rejection sampling: \d+"
+)
+MATRIX_LINE = re.compile(
+    r"undecided: (\d+) of (\d+) directions; median plan: \d+ ms; p95 plan: \d+ ms"
 )
 
 
@@ -23,8 +30,17 @@ def printed(*arguments: str) -> list[str]:
 
 
 def test_the_solver_benchmark_runs_and_ends_with_its_figures() -> None:
-    lines = printed("benchmarks/solver.py", "--catalogue-pairs", "1", "--budget", "0.2")
+    lines = printed(
+        "benchmarks/solver.py",
+        *("--catalogue-pairs", "1", "--budget", "0.2", "--matrix-models", "2"),
+    )
     assert SOLVER_LINE.fullmatch(lines[-1])
+    # Two models: two ordered pairs, on two routes, in two directions each.
+    matrix = MATRIX_LINE.fullmatch(lines[-2])
+    assert matrix is not None
+    undecided, directions = map(int, matrix.groups())
+    assert directions == 8
+    assert sum(line.startswith("undecided, ") for line in lines) == undecided
     checked = next(line for line in lines if line.startswith("verified again by ray casting"))
     verified, total = map(int, re.findall(r"\d+", checked))
     assert verified == total > 0
@@ -67,3 +83,19 @@ def test_the_fault_finding_benchmark_runs_and_never_kills_the_equivalent_mutant(
     rows = [line.split() for line in lines if line.startswith("nan_guard")]
     assert [row[1] for row in rows] == ["gate", "random", "random"]
     assert all(row[-1] == "-" and row[-3].startswith("0/1") for row in rows)
+
+
+def test_the_gate_is_charged_the_runs_up_to_its_killing_trial_not_the_shrinking_after(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
+    fault_finding = importlib.import_module("fault_finding")
+    counter = fault_finding.Counter()
+    runs = [object() for _ in range(6)]
+    counter.made = {id(run): index + 1 for index, run in enumerate(runs)}
+    counter.simulations = len(runs)  # the item went on to shrink with runs 5 and 6
+    killing = SimpleNamespace(candidate=runs[2], baseline=runs[3])
+    assert fault_finding._tried_by(counter, killing, 1) == 4
+    # A trial whose runs an earlier item simulated happens within this one, not before it.
+    cached = SimpleNamespace(candidate=runs[0], baseline=None)
+    assert fault_finding._tried_by(counter, cached, 3) == 3

@@ -293,6 +293,22 @@ BOUNDS = {
         "1000 witnesses per direction: each is a test item of its own",
         "from 1 to 20",
     ),
+    "a solver rlimit of zero": Case(
+        "witnesses: 1",
+        "witnesses: 1\n  solver_rlimit: 0",
+        8,
+        "settings.solver_rlimit",
+        "0 is below 1: Z3 stops every query at once",
+        "from 1 to 5000000000",
+    ),
+    "a solver rlimit of 10 to the 12": Case(
+        "witnesses: 1",
+        "witnesses: 1\n  solver_rlimit: 1000000000000",
+        8,
+        "settings.solver_rlimit",
+        "1000000000000 is above 5000000000, the most the gate accepts: at a thousand times",
+        "from 1 to 5000000000",
+    ),
     "a pinned pole 1 km wide": Case(
         "      pose: {xyz: [0.337, 0.0, 0.44023]}",
         "      pose: {xyz: [0.337, 0.0, 0.44023]}\n    placements:\n"

@@ -15,6 +15,7 @@ import pytest
 
 from pytest_lasertest.model.verify import Placement, Scene, Verification, verify
 from tests.helpers.runs import ARTIFACTS, junit_cases
+from tests.helpers.texts import SIZE_PAIR
 
 
 def test_the_sparser_scanner_drives_into_its_witness_and_the_denser_one_stops_short_stuck(
@@ -78,6 +79,24 @@ def test_placement_items_of_identical_scanners_are_skipped_because_they_cast_the
     result.assert_outcomes(passed=2, skipped=2)
     result.stdout.fnmatch_lines(
         ["SKIPPED [[]2[]] gate.lasertest.yaml:13: unsat: the two scanners cast the same beams *"]
+    )
+
+
+def test_a_direction_z3_cannot_decide_fails_its_first_item_with_the_fix_and_skips_the_rest(
+    pytester: pytest.Pytester,
+) -> None:
+    # An rlimit of one step: every query is cut off, so neither a witness nor a proof is found.
+    pairs = SIZE_PAIR.replace("  witnesses: 1\n", "  witnesses: 2\n  solver_rlimit: 1\n")
+    (pytester.path / "gate.lasertest.yaml").write_text(pairs)
+    result = pytester.runpytest("-k", "candidate-misses", "-rs")
+    result.assert_outcomes(failed=1, skipped=1)
+    result.stdout.fnmatch_lines(
+        [
+            "size[[]candidate-misses-0[]]: undecided. The solver neither found a placement *",
+            "  Z3 could not decide at t = * s within its rlimit (1 per query; canceled)*",
+            "  Fix: raise `settings: solver_rlimit:` in gate.lasertest.yaml above the rlimit *",
+            "SKIPPED [[]1[]] gate.lasertest.yaml:*: undecided: see size[[]candidate-misses-0[]]",
+        ]
     )
 
 

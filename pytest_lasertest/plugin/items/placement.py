@@ -165,10 +165,20 @@ class PlacementItem(SearchItem):
     def _witness(self) -> tuple[Scene, Witness]:
         plan = self.lasertest.plan(self.spec, self.pair, self.controller)
         directed = plan.direction(self.direction)
+        if directed.status == "unknown":
+            self._undecided(directed)
         witness = _witness(directed, self.index)
         if witness is None:
             raise pytest.skip.Exception(skip_reason(directed), _use_item_location=True)
         return plan.scene, witness
+
+    def _undecided(self, plan: DirectionPlan) -> None:
+        """Fail the direction's first item, and skip the others pointing at it: a direction
+        Z3 could not decide is neither a pass nor a skip, which CI would read as one."""
+        first = f"{self.pair.name}[{self.direction}-0]"
+        if self.index > 0:
+            raise pytest.skip.Exception(f"undecided: see {first}", _use_item_location=True)
+        raise ItemFailure(undecided_report(self.path, first, plan.explanation))
 
 
 class AvoidItem(SearchItem):
@@ -218,6 +228,18 @@ def placement_items(
         for direction in DIRECTIONS
         for index in indices
     ]
+
+
+def undecided_report(path: Path, name: str, explanation: str) -> str:
+    """Why an undecided direction fails, and what to do about it."""
+    return (
+        f"{name}: undecided. The solver neither found a placement for this direction nor "
+        "proved that none exists, so the gate cannot say whether the change is safe here.\n"
+        f"  {explanation}\n"
+        f"  Fix: raise `settings: solver_rlimit:` in {path.name} above the rlimit named above "
+        "(each tenfold can cost up to ten times the planning time), or shorten the route to the "
+        "stretch that matters; `lasertest plan` shows the verdict without driving."
+    )
 
 
 def skip_reason(plan: DirectionPlan) -> str:
