@@ -63,6 +63,9 @@ class Question:
         return {
             "bounds": bounds(self.settings),
             "robot": all_of([shape.clear_of_polygon(piece) for piece in before]),
+            # The verifier's clearance holds the goal free too (the robot must be able to
+            # arrive); without it a model at the goal failed the ray cast.
+            "goal": shape.clear_of_polygon(scene.arrival()),
             "path": any_of([shape.inside_polygon(piece) for piece in after]),
             "detector": reading or detected(shape, detector, pose, self.region()),
             **constraint_blocks(self.settings, shape),
@@ -155,6 +158,7 @@ def _why(
         "bounds": f"the obstacle's size ({settings.min_size:g}-{settings.max_size:g} m)",
         "robot": f"room for the robot to stop ({scene.robot.braking_distance:.2f} m)",
         "path": "being in the robot's way",
+        "goal": "leaving the goal free",
         "detector": f"the {detector_side}'s reading",
     }
     named = [words[label] if label in words else _constraint(settings, label) for label in others]

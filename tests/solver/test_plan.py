@@ -159,3 +159,23 @@ def test_no_witness_stands_where_the_robot_must_be_to_reach_the_goal() -> None:
                 obstacle = witness.placement.obstacle
                 assert polygon_clearance(scene(name).arrival(), obstacle) >= REQUIRED_MARGIN
                 assert witness.verification.clearance >= REQUIRED_MARGIN
+
+
+def test_a_scanner_whose_range_ends_at_the_goal_is_proven_blind_to_nothing_the_robot_meets() -> (
+    None
+):
+    # Found by the catalogue matrix (benchmarks/solver.py): the UST-10LX reads 10 m, the route
+    # is 10 m long, so what it misses beyond its range lies at the goal. The proof once placed
+    # such an obstacle where the robot must stand to arrive, and the ray cast rejected the model
+    # ("a model of the beyond case failed the ray cast": undecided). The goal is left free now.
+    pair = next(pair for pair in PAPER.pairs if pair.name == "size")
+    lms1xx = dataclasses.replace(pair.baseline.profile, samples=720, range_max=30.0)
+    ust_10lx = dataclasses.replace(
+        lms1xx, samples=1081, range_min=0.06, range_max=10.0, update_rate=40.0
+    )
+    ten_metres = dataclasses.replace(scene("size"), baseline=lms1xx, candidate=ust_10lx)
+    assert math.isclose(ten_metres.path.legs()[-1].length, 10.0)
+    plan = plan_direction(ten_metres, "candidate-misses", SETTINGS)
+    assert plan.status == "unsat"
+    assert "beyond its range (10 m), ruled out by" in plan.explanation
+    assert "leaving the goal free" in plan.explanation
