@@ -20,7 +20,7 @@ from pytest_lasertest.model.route import scan_times, swept_polygons
 from pytest_lasertest.model.verify import ROLES, Direction, Placement, Scene, verify
 from pytest_lasertest.solver.backend import Solution, Workspace
 from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of
-from pytest_lasertest.solver.scans import Region, detected, miss_ways, reaches
+from pytest_lasertest.solver.scans import Disc, Region, detected, miss_ways, reaches
 from pytest_lasertest.solver.search import (
     SearchSettings,
     bounds,
@@ -97,11 +97,14 @@ def prove(
     misser = scene.misser(direction)
     last_scan = scan_times(misser.update_rate, anchor)[-1:]
     pose = scene.path.poses_at(last_scan)[0]
+    detector = scene.detector(direction)
+    origins, _ = detector.rays(scene.path.poses_at(np.array([anchor])))
+    read = Disc((float(origins[0, 0, 0]), float(origins[0, 0, 1])), detector.range_max)
     reasons: dict[str, str] = {}
     workspace = Workspace()
     for shape in shapes:
         question = Question(scene, direction, anchor, shape, settings)
-        ways = miss_ways(shape, misser, pose, question.region(), settings.min_size)
+        ways = miss_ways(shape, misser, pose, question.region(), settings.min_size, read)
         if misser.scan_height <= scene.detector(direction).scan_height:
             ways["below"] = []  # nothing stands above one plane and below a lower one
         for way, options in ways.items():
@@ -121,15 +124,34 @@ def prove(
 
 
 def _rule_out(
-    question: Question, way: str, options: list[str], workspace: Workspace
+    question: Question, way: str, options: list[str], workspace: Workspace, chunk: int = 32
 ) -> Solution | Witness:
+    """Whether any of a way's options admits a placement, asked `chunk` options at a time: one
+    disjunction over hundreds of gaps ran out of its rlimit where a few dozen at a time are
+    refuted in milliseconds each. An unsat answer's core gathers every chunk's labels."""
     if not options:
         return Solution("unsat", {}, ("misser",))
+    core: set[str] = set()
+    for first in range(0, len(options), chunk):
+        outcome = _rule_out_chunk(question, way, options[first : first + chunk], workspace)
+        if isinstance(outcome, Witness) or outcome.verdict != "unsat":
+            return outcome
+        core.update(outcome.core)
+    return Solution("unsat", {}, tuple(sorted(core)))
+
+
+def _rule_out_chunk(
+    question: Question, way: str, options: list[str], workspace: Workspace
+) -> Solution | Witness:
+    """The relaxed question first, then the whole one; a chunk Z3 cannot decide is halved
+    until a single option is left undecided."""
     solution = Solution("unknown", {})
     for relaxed in (True, False):
         blocks = {**question.blocks(relaxed), "misser": any_of(options)}
         variables = PROOF_VARIABLES if relaxed else VARIABLES
         solution = workspace.solve(variables, blocks, (), question.settings.rlimit)
+        if solution.verdict == "unknown" and len(options) > 1:
+            return _rule_out(question, way, options, workspace, len(options) // 2)
         if solution.verdict != "sat":
             return solution
     obstacle = obstacle_of(question.shape, solution)

@@ -71,11 +71,26 @@ def detected(
     return all_of([above, any_of(options)])
 
 
+@dataclass(frozen=True)
+class Disc:
+    """Where a reading can come from: within `radius` m of `centre` [x, y] (m), a detector's
+    origin and its range_max."""
+
+    centre: tuple[float, float]
+    radius: float  # m
+
+
 def miss_ways(
-    shape: ObstacleShape, profile: LaserProfile, pose: FloatArray, region: Region, min_size: float
+    shape: ObstacleShape,
+    profile: LaserProfile,
+    pose: FloatArray,
+    region: Region,
+    min_size: float,
+    read_within: Disc | None = None,
 ) -> dict[str, list[str]]:
     """The ways every beam of the scan at robot pose [x, y, yaw] passes clear of the obstacle by
-    M, each a list of alternatives; a way that cannot happen in the region has none."""
+    M, each a list of alternatives; a way that cannot happen in the region (or, if given, with a
+    part of the obstacle in `read_within`) has none."""
     origins, _ = profile.rays(pose[np.newaxis, :])
     origin = origins[0, 0]
     start, extent = profile.sector_in_base()
@@ -85,7 +100,7 @@ def miss_ways(
         "outside": _outside(shape, origin, start, extent),
         "beyond": _beyond(shape, origin, start, extent, profile.range_max, region),
         "near": _near(shape, origin, profile.range_min),
-        "between": _gaps(shape, origin, profile, start, region, min_size),
+        "between": _gaps(shape, origin, profile, start, region, min_size, read_within),
     }
 
 
@@ -173,7 +188,18 @@ def _gaps(
     start: float,
     region: Region,
     min_size: float,
+    read_within: Disc | None,
 ) -> list[str]:
+    """One option per gap between neighbouring beams that can hold an obstacle min_size wide
+    where the region (and `read_within`) lets it be.
+
+    The gaps an obstacle cannot reach are left out: a proof with hundreds of options ran out of
+    its rlimit where none could hold anything. An obstacle at least min_size wide (a square of
+    any yaw, or a disc) between two rays `spacing` apart has its nearest point at least
+    min_size / (2 tan(spacing / 2)) - sqrt(2) min_size out along their bisector: its width
+    across the bisector, at least min_size, must fit within the wedge at the far end of its
+    extent along it, at most sqrt(2) min_size further out.
+    """
     count, spacing = profile.beam_count, profile.angle_increment
     if count < 2:
         return []
@@ -181,9 +207,17 @@ def _gaps(
     # Nothing min_size wide fits between two beams nearer than where their gap is that wide.
     if 2.0 * furthest * math.sin(spacing / 2.0) < min_size:
         return []
+    lows = start + np.arange(count - 1) * spacing  # (G,) rad
+    middles = lows + spacing / 2.0
+    bisectors = np.column_stack([np.cos(middles), np.sin(middles)])  # (G, 2)
+    nearest = min_size / (2.0 * math.tan(spacing / 2.0)) - math.sqrt(2.0) * min_size  # m
+    reach = ((region.corners() - origin) @ bisectors.T).max(axis=0)  # (G,) m
+    if read_within is not None:
+        centre = np.array(read_within.centre) - origin
+        reach = np.minimum(reach, bisectors @ centre + read_within.radius)
     options = []
-    for index in range(count - 1):
-        low, high = start + index * spacing, start + (index + 1) * spacing
+    for low in lows[reach >= nearest].tolist():
+        high = low + spacing
         left_of_low = shape.at_least(_normal(low), float(origin @ _normal(low)))
         right_of_high = shape.at_most(_normal(high), float(origin @ _normal(high)))
         options.append(all_of([left_of_low, right_of_high]))
