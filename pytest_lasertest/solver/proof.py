@@ -120,7 +120,7 @@ def prove(
                     f"({settings.rlimit:,} per query; {outcome.reason})",
                 )
             reasons.setdefault(way, _why(scene, direction, settings, way, outcome))
-    return Proof("unsat", _sentence(scene, direction, anchor, reasons))
+    return Proof("unsat", _sentence(scene, direction, anchor, settings.min_size, reasons))
 
 
 def _rule_out(
@@ -192,7 +192,10 @@ def _constraint(settings: SearchSettings, label: str) -> str:
     return f"your constraint {constraint.text!r} ({constraint.location})"
 
 
-def _sentence(scene: Scene, direction: Direction, anchor: float, reasons: dict[str, str]) -> str:
+def _sentence(
+    scene: Scene, direction: Direction, anchor: float, min_size: float, reasons: dict[str, str]
+) -> str:
+    """The proof in one short sentence, then way by way what rules each way of missing out."""
     detector_side, misser_side = ROLES[direction]
     misser = scene.misser(direction)
     phrases = {
@@ -206,7 +209,9 @@ def _sentence(scene: Scene, direction: Direction, anchor: float, reasons: dict[s
     where = "at the start pose" if anchor == 0.0 else f"at t = {anchor:.2f} s"
     detector = scene.detector(direction)
     return (
-        f"no obstacle discriminates {where}. The {misser_side} ({misser.describe()}) misses "
-        f"what the {detector_side} ({detector.describe()}) reads only "
+        f"no obstacle discriminates {where}: the {misser_side} reads every obstacle "
+        f"{min_size:g} m or wider in the robot's way that the {detector_side} reads. In detail, "
+        f"the {misser_side} ({misser.describe()}) misses what the {detector_side} "
+        f"({detector.describe()}) reads only "
         + "; ".join(f"{phrases[way]}, {why}" for way, why in reasons.items())
     )
