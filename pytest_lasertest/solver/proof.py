@@ -20,7 +20,14 @@ from pytest_lasertest.model.route import scan_times, swept_polygons
 from pytest_lasertest.model.verify import ROLES, Direction, Placement, Scene, verify
 from pytest_lasertest.solver.backend import Solution, Workspace
 from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of
-from pytest_lasertest.solver.scans import Disc, Region, detected, miss_ways, reaches
+from pytest_lasertest.solver.scans import (
+    Disc,
+    Region,
+    detected,
+    gap_regions,
+    miss_ways,
+    reaches,
+)
 from pytest_lasertest.solver.search import (
     SearchSettings,
     bounds,
@@ -52,8 +59,10 @@ class Question:
     shape: ObstacleShape
     settings: SearchSettings
 
-    def blocks(self, relaxed: bool) -> dict[str, str]:
-        """Labelled SMT-LIB blocks: bounds, the robot's room to stop, its way, the reading."""
+    def blocks(self, relaxed: bool, within: Region | None = None) -> dict[str, str]:
+        """Labelled SMT-LIB blocks: bounds, the robot's room to stop, its way, the reading (by
+        the beams that reach `within`, a box the misser's options keep the obstacle in, or the
+        question's whole region)."""
         scene, shape = self.scene, self.shape
         footprint, stands = scene.robot.footprint_array(), scene.standstill(self.anchor)
         before = swept_polygons(scene.path, footprint, 0.0, stands)
@@ -67,7 +76,7 @@ class Question:
             # arrive); without it a model at the goal failed the ray cast.
             "goal": shape.clear_of_polygon(scene.arrival()),
             "path": any_of([shape.inside_polygon(piece) for piece in after]),
-            "detector": reading or detected(shape, detector, pose, self.region()),
+            "detector": reading or detected(shape, detector, pose, within or self.region()),
             **constraint_blocks(self.settings, shape),
         }
 
@@ -104,13 +113,16 @@ def prove(
     workspace = Workspace()
     for shape in shapes:
         question = Question(scene, direction, anchor, shape, settings)
-        ways = miss_ways(shape, misser, pose, question.region(), settings.min_size, read)
-        if misser.scan_height <= scene.detector(direction).scan_height:
+        region = question.region()
+        ways = miss_ways(shape, misser, pose, region, settings.min_size, read)
+        gaps = gap_regions(misser, pose, region, settings.min_size, read)
+        if misser.scan_height <= detector.scan_height:
             ways["below"] = []  # nothing stands above one plane and below a lower one
         for way, options in ways.items():
             if not options and way in IMPOSSIBLE:
                 continue
-            outcome = _rule_out(question, way, options, workspace)
+            boxes = gaps if way == "between" else None
+            outcome = _rule_out(question, way, options, workspace, boxes)
             if isinstance(outcome, Witness):
                 return Proof("sat", "", outcome)
             if outcome.verdict == "unknown":
@@ -124,16 +136,25 @@ def prove(
 
 
 def _rule_out(
-    question: Question, way: str, options: list[str], workspace: Workspace, chunk: int = 32
+    question: Question,
+    way: str,
+    options: list[str],
+    workspace: Workspace,
+    boxes: list[Region] | None = None,
+    chunk: int = 32,
 ) -> Solution | Witness:
     """Whether any of a way's options admits a placement, asked `chunk` options at a time: one
     disjunction over hundreds of gaps ran out of its rlimit where a few dozen at a time are
-    refuted in milliseconds each. An unsat answer's core gathers every chunk's labels."""
+    refuted in milliseconds each. `boxes`, if given, hold each option's obstacles. An unsat
+    answer's core gathers every chunk's labels."""
     if not options:
         return Solution("unsat", {}, ("misser",))
     core: set[str] = set()
     for first in range(0, len(options), chunk):
-        outcome = _rule_out_chunk(question, way, options[first : first + chunk], workspace)
+        part = slice(first, first + chunk)
+        outcome = _rule_out_chunk(
+            question, way, options[part], workspace, None if boxes is None else boxes[part]
+        )
         if isinstance(outcome, Witness) or outcome.verdict != "unsat":
             return outcome
         core.update(outcome.core)
@@ -141,17 +162,23 @@ def _rule_out(
 
 
 def _rule_out_chunk(
-    question: Question, way: str, options: list[str], workspace: Workspace
+    question: Question,
+    way: str,
+    options: list[str],
+    workspace: Workspace,
+    boxes: list[Region] | None,
 ) -> Solution | Witness:
-    """The relaxed question first, then the whole one; a chunk Z3 cannot decide is halved
-    until a single option is left undecided."""
+    """The relaxed question first, then the whole one, its detector's beams only those that
+    reach the chunk's boxes; a chunk Z3 cannot decide is halved until a single option is left
+    undecided."""
+    within = None if boxes is None else _around(boxes)
     solution = Solution("unknown", {})
     for relaxed in (True, False):
-        blocks = {**question.blocks(relaxed), "misser": any_of(options)}
+        blocks = {**question.blocks(relaxed, within), "misser": any_of(options)}
         variables = PROOF_VARIABLES if relaxed else VARIABLES
         solution = workspace.solve(variables, blocks, (), question.settings.rlimit)
         if solution.verdict == "unknown" and len(options) > 1:
-            return _rule_out(question, way, options, workspace, len(options) // 2)
+            return _rule_out(question, way, options, workspace, boxes, len(options) // 2)
         if solution.verdict != "sat":
             return solution
     obstacle = obstacle_of(question.shape, solution)
@@ -161,6 +188,14 @@ def _rule_out_chunk(
         return Solution("unknown", {}, reason=f"a model of the {way} case failed the ray cast")
     x, y, yaw = (float(value) for value in question.pose())
     return Witness(0, placement, verification, (x, y, yaw))
+
+
+def _around(boxes: list[Region]) -> Region:
+    """The smallest box holding every one of `boxes`."""
+    return Region(
+        (min(box.low[0] for box in boxes), min(box.low[1] for box in boxes)),
+        (max(box.high[0] for box in boxes), max(box.high[1] for box in boxes)),
+    )
 
 
 def _why(

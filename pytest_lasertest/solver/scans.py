@@ -191,37 +191,91 @@ def _gaps(
     read_within: Disc | None,
 ) -> list[str]:
     """One option per gap between neighbouring beams that can hold an obstacle min_size wide
-    where the region (and `read_within`) lets it be.
-
-    The gaps an obstacle cannot reach are left out: a proof with hundreds of options ran out of
-    its rlimit where none could hold anything. An obstacle at least min_size wide (a square of
-    any yaw, or a disc) between two rays `spacing` apart has its nearest point at least
-    min_size / (2 tan(spacing / 2)) - sqrt(2) min_size out along their bisector: its width
-    across the bisector, at least min_size, must fit within the wedge at the far end of its
-    extent along it, at most sqrt(2) min_size further out.
-    """
-    count, spacing = profile.beam_count, profile.angle_increment
-    if count < 2:
-        return []
-    furthest = float(np.hypot(*(region.corners() - origin).T).max())
-    # Nothing min_size wide fits between two beams nearer than where their gap is that wide.
-    if 2.0 * furthest * math.sin(spacing / 2.0) < min_size:
-        return []
-    lows = start + np.arange(count - 1) * spacing  # (G,) rad
-    middles = lows + spacing / 2.0
-    bisectors = np.column_stack([np.cos(middles), np.sin(middles)])  # (G, 2)
-    nearest = min_size / (2.0 * math.tan(spacing / 2.0)) - math.sqrt(2.0) * min_size  # m
-    reach = ((region.corners() - origin) @ bisectors.T).max(axis=0)  # (G,) m
-    if read_within is not None:
-        centre = np.array(read_within.centre) - origin
-        reach = np.minimum(reach, bisectors @ centre + read_within.radius)
+    where the region (and `read_within`) lets it be (`_reachable_gaps`)."""
+    spacing = profile.angle_increment
     options = []
-    for low in lows[reach >= nearest].tolist():
+    for low in _reachable_gaps(origin, profile, start, region, min_size, read_within).tolist():
         high = low + spacing
         left_of_low = shape.at_least(_normal(low), float(origin @ _normal(low)))
         right_of_high = shape.at_most(_normal(high), float(origin @ _normal(high)))
         options.append(all_of([left_of_low, right_of_high]))
     return options
+
+
+def gap_regions(
+    profile: LaserProfile,
+    pose: FloatArray,
+    region: Region,
+    min_size: float,
+    read_within: Disc | None = None,
+) -> list[Region]:
+    """For each option of miss_ways' "between", in order, a box holding every obstacle that
+    option admits: the part of its gap's wedge beyond where min_size fits, within `region`."""
+    origins, _ = profile.rays(pose[np.newaxis, :])
+    origin = origins[0, 0]
+    start = profile.sector_in_base()[0] + float(pose[2])
+    lows = _reachable_gaps(origin, profile, start, region, min_size, read_within)
+    nearest = max(_nearest_in_gap(profile.angle_increment, min_size), 0.0)
+    furthest = float(np.hypot(*(region.corners() - origin).T).max())
+    return [
+        _sector_box(origin, low, low + profile.angle_increment, nearest, furthest, region)
+        for low in lows.tolist()
+    ]
+
+
+def _reachable_gaps(
+    origin: FloatArray,
+    profile: LaserProfile,
+    start: float,
+    region: Region,
+    min_size: float,
+    read_within: Disc | None,
+) -> FloatArray:
+    """The angles (rad) at which the gaps begin that can hold an obstacle min_size wide in the
+    region, and with a part of it in `read_within` if given. Shape (G,).
+
+    The gaps an obstacle cannot reach are left out: a proof with hundreds of options ran out of
+    its rlimit where none could hold anything.
+    """
+    count, spacing = profile.beam_count, profile.angle_increment
+    if count < 2:
+        return np.zeros(0)
+    furthest = float(np.hypot(*(region.corners() - origin).T).max())
+    # Nothing min_size wide fits between two beams nearer than where their gap is that wide.
+    if 2.0 * furthest * math.sin(spacing / 2.0) < min_size:
+        return np.zeros(0)
+    lows = start + np.arange(count - 1) * spacing  # (G,) rad
+    middles = lows + spacing / 2.0
+    bisectors = np.column_stack([np.cos(middles), np.sin(middles)])  # (G, 2)
+    reach = ((region.corners() - origin) @ bisectors.T).max(axis=0)  # (G,) m
+    if read_within is not None:
+        centre = np.array(read_within.centre) - origin
+        reach = np.minimum(reach, bisectors @ centre + read_within.radius)
+    kept: FloatArray = lows[reach >= _nearest_in_gap(spacing, min_size)]
+    return kept
+
+
+def _nearest_in_gap(spacing: float, min_size: float) -> float:
+    """How far out along the bisector of two rays `spacing` rad apart the nearest point of an
+    obstacle at least min_size wide (a square of any yaw, or a disc) between them lies, at
+    least (m): its width across the bisector, at least min_size, must fit within the wedge at
+    the far end of its extent along it, at most sqrt(2) min_size further out."""
+    return min_size / (2.0 * math.tan(spacing / 2.0)) - math.sqrt(2.0) * min_size
+
+
+def _sector_box(
+    origin: FloatArray, low: float, high: float, near: float, far: float, region: Region
+) -> Region:
+    """The box around the part of the wedge from `low` to `high` (rad) between `near` and
+    `far` m from `origin`, cut to `region`."""
+    angles = [low, high] + [k * math.pi / 2.0 for k in range(-8, 9) if low < k * math.pi / 2 < high]
+    rays = np.array([[math.cos(a), math.sin(a)] for a in angles])  # (A, 2)
+    points = np.vstack([origin + near * rays, origin + far * rays])
+    low_corner = np.maximum(points.min(axis=0), region.low)
+    high_corner = np.minimum(points.max(axis=0), region.high)
+    return Region(
+        (float(low_corner[0]), float(low_corner[1])), (float(high_corner[0]), float(high_corner[1]))
+    )
 
 
 def _normal(angle: float) -> FloatArray:

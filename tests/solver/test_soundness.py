@@ -1,12 +1,14 @@
 """Whatever two scanners are compared, the solver's answer agrees with the exact ray cast: a
 witness it returns verifies, and no model it builds on the way fails the verifier (the answer
-is then `unknown` with "failed the ray cast" in its explanation, a bug in an encoding)."""
+is then `unknown` with "failed the ray cast" in its explanation, a bug in an encoding). And the
+gaps a proof leaves out can hold nothing of the smallest size."""
 
 from __future__ import annotations
 
 import dataclasses
 import math
 
+import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -15,6 +17,7 @@ from pytest_lasertest.model.route import NominalPath, nominal_path
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.model.verify import DIRECTIONS, Scene, verify
 from pytest_lasertest.solver.plan import plan_direction
+from pytest_lasertest.solver.scans import _nearest_in_gap
 from tests.helpers.paper import PAPER, SETTINGS
 
 LMS1XX = PAPER.pairs[0].baseline.profile
@@ -58,3 +61,33 @@ def test_no_answer_of_the_solver_disagrees_with_the_ray_cast(
         assert "failed the ray cast" not in plan.explanation
         for witness in plan.witnesses:
             assert verify(scene, witness.placement).holds()
+
+
+@settings(max_examples=200, deadline=None, derandomize=True)
+@given(
+    spacing=st.floats(0.001, 0.2),  # rad between two beams
+    size=st.floats(0.05, 1.0),  # m, a side of the square
+    yaw=st.floats(0.0, math.pi / 2.0),
+    lateral=st.floats(-0.5, 0.5),  # of the wedge's width where the square sits
+)
+def test_no_square_fits_between_two_beams_nearer_than_the_bound_proofs_leave_gaps_out_by(
+    spacing: float, size: float, yaw: float, lateral: float
+) -> None:
+    # The bisector is +x; the square's centre moves out along it (and across, by `lateral`)
+    # until all four corners lie between the rays at -spacing/2 and +spacing/2.
+    half = size / 2.0
+    corners = np.array([[-half, -half], [half, -half], [half, half], [-half, half]])
+    turned = corners @ np.array([[math.cos(yaw), math.sin(yaw)], [-math.sin(yaw), math.cos(yaw)]])
+    slope = math.tan(spacing / 2.0)
+
+    def fits(out: float) -> bool:
+        points = turned + np.array([out, lateral * out * slope])
+        return bool((np.abs(points[:, 1]) <= points[:, 0] * slope).all())
+
+    low, high = 0.0, 10.0 * size / slope
+    assert fits(high)
+    for _ in range(60):
+        middle = (low + high) / 2.0
+        low, high = (low, middle) if fits(middle) else (middle, high)
+    nearest = float((turned[:, 0] + high).min())
+    assert nearest >= _nearest_in_gap(spacing, size) - 1e-9
