@@ -3,6 +3,7 @@ unrelated edit to the description collects no items and passes; a laser edit is 
 
 from __future__ import annotations
 
+import json
 import shlex
 import shutil
 from pathlib import Path
@@ -11,6 +12,7 @@ from typing import Any
 import pytest
 import yaml
 
+from pytest_lasertest.cli import main
 from tests.helpers import EXAMPLES
 from tests.helpers.git import commit_everything
 
@@ -88,3 +90,19 @@ def test_a_laser_edit_is_judged_and_leaves_junit_xml_and_evidence(
     artifacts = pytester.path / "lasertest-artifacts"
     assert "front_laser[coverage]" in (artifacts / "junit.xml").read_text()
     assert (artifacts / "ci" / "gate.lasertest.yaml" / "front_laser_coverage.json").is_file()
+
+
+def test_halving_the_beams_on_the_8_m_route_decides_both_directions(
+    checkout: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # On this route every direction of 720 against 360 beams was once undecided.
+    robot = checkout / "robot" / "robot.urdf.xacro"
+    robot.write_text(robot.read_text().replace("<samples>720</samples>", "<samples>360</samples>"))
+    monkeypatch.chdir(checkout)
+    assert main(["plan", "gate.lasertest.yaml", "--json"]) == 0
+    (pair,) = json.loads(capsys.readouterr().out)["pairs"]
+    assert pair["status"] == "sat"
+    assert {witness["direction"] for witness in pair["witnesses"]} == {"candidate-misses"}
+    # The other direction is proven: the 720-beam scanner misses nothing the 360-beam one reads.
+    assert "no obstacle discriminates" in pair["explanation"]
+    assert "could not decide" not in pair["explanation"]
