@@ -4,7 +4,9 @@ A misser scan misses an obstacle only in a few ways (`scans.miss_ways`). No plac
 exactly when each way, joined to the rest of the question, is unsatisfiable, so a proof is one
 query per way and shape, and its explanation says for each way what rules it out: the unsat core
 in words. A cheap relaxation of the detector's reading is tried first; only a way it cannot rule
-out meets the disjunction over every beam.
+out meets the disjunction over the beams that can reach it. A way of many options (the gaps
+between hundreds of beams) is asked a few dozen options at a time, and only about the gaps an
+obstacle of the smallest size can reach.
 """
 
 from __future__ import annotations
