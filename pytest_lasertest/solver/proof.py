@@ -24,11 +24,14 @@ from pytest_lasertest.solver.backend import Solution, Workspace
 from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of
 from pytest_lasertest.solver.scans import (
     Disc,
+    IndexArray,
     Region,
     detected,
     gap_regions,
     miss_ways,
+    near_region,
     reaches,
+    reaching_beams,
 )
 from pytest_lasertest.solver.search import (
     SearchSettings,
@@ -38,6 +41,8 @@ from pytest_lasertest.solver.search import (
 )
 
 PROOF_VARIABLES = (*VARIABLES, "QX", "QY")
+# Beams of the detector asked about at once, when one option against all of them is too hard.
+BEAM_CHUNK = 32
 # Ways of missing that a scanner's own figures rule out, not worth a word.
 IMPOSSIBLE = ("outside", "near")
 
@@ -61,10 +66,12 @@ class Question:
     shape: ObstacleShape
     settings: SearchSettings
 
-    def blocks(self, relaxed: bool, within: Region | None = None) -> dict[str, str]:
+    def blocks(
+        self, relaxed: bool, within: Region | None = None, beams: IndexArray | None = None
+    ) -> dict[str, str]:
         """Labelled SMT-LIB blocks: bounds, the robot's room to stop, its way, the reading (by
-        the beams that reach `within`, a box the misser's options keep the obstacle in, or the
-        question's whole region)."""
+        `beams`, or by those that reach `within`, a box the misser's options keep the obstacle
+        in, or the question's whole region)."""
         scene, shape = self.scene, self.shape
         footprint, stands = scene.robot.footprint_array(), scene.standstill(self.anchor)
         before = swept_polygons(scene.path, footprint, 0.0, stands)
@@ -78,7 +85,7 @@ class Question:
             # arrive); without it a model at the goal failed the ray cast.
             "goal": shape.clear_of_polygon(scene.arrival()),
             "path": any_of([shape.inside_polygon(piece) for piece in after]),
-            "detector": reading or detected(shape, detector, pose, within or self.region()),
+            "detector": reading or detected(shape, detector, pose, within or self.region(), beams),
             **constraint_blocks(self.settings, shape),
         }
 
@@ -110,21 +117,26 @@ def prove(
     pose = scene.path.poses_at(last_scan)[0]
     detector = scene.detector(direction)
     origins, _ = detector.rays(scene.path.poses_at(np.array([anchor])))
-    read = Disc((float(origins[0, 0, 0]), float(origins[0, 0, 1])), detector.range_max)
+    centre = (float(origins[0, 0, 0]), float(origins[0, 0, 1]))
+    read = Disc(centre, detector.range_max, detector.range_min)
     reasons: dict[str, str] = {}
     workspace = Workspace()
     for shape in shapes:
         question = Question(scene, direction, anchor, shape, settings)
         region = question.region()
         ways = miss_ways(shape, misser, pose, region, settings.min_size, read)
-        gaps = gap_regions(misser, pose, region, settings.min_size, read)
+        # Where each option keeps the obstacle, for the ways that keep it in a small part of
+        # the region: the detector's disjunction then holds only the beams that reach it.
+        boxes = {
+            "between": gap_regions(misser, pose, region, settings.min_size, read),
+            "near": [near_region(misser, pose, region)] * len(ways["near"]),
+        }
         if misser.scan_height <= detector.scan_height:
             ways["below"] = []  # nothing stands above one plane and below a lower one
         for way, options in ways.items():
             if not options and way in IMPOSSIBLE:
                 continue
-            boxes = gaps if way == "between" else None
-            outcome = _rule_out(question, way, options, workspace, boxes)
+            outcome = _rule_out(question, way, options, workspace, boxes.get(way))
             if isinstance(outcome, Witness):
                 return Proof("sat", "", outcome)
             if outcome.verdict == "unknown":
@@ -181,8 +193,37 @@ def _rule_out_chunk(
         solution = workspace.solve(variables, blocks, (), question.settings.rlimit)
         if solution.verdict == "unknown" and len(options) > 1:
             return _rule_out(question, way, options, workspace, boxes, len(options) // 2)
+        if solution.verdict == "unknown" and not relaxed:
+            return _rule_out_by_beams(question, way, options, workspace, within)
         if solution.verdict != "sat":
             return solution
+    return _witness(question, way, solution)
+
+
+def _rule_out_by_beams(
+    question: Question, way: str, options: list[str], workspace: Workspace, within: Region | None
+) -> Solution | Witness:
+    """One option Z3 cannot decide against every beam of the detector at once, asked against
+    BEAM_CHUNK beams at a time."""
+    detector = question.scene.detector(question.direction)
+    beams = reaching_beams(detector, question.pose(), within or question.region())
+    core = {"detector", "misser"}  # no beam reaches: the reading and the way rule it out
+    for first in range(0, len(beams), BEAM_CHUNK):
+        blocks = {
+            **question.blocks(False, within, beams[first : first + BEAM_CHUNK]),
+            "misser": any_of(options),
+        }
+        solution = workspace.solve(VARIABLES, blocks, (), question.settings.rlimit)
+        if solution.verdict == "sat":
+            return _witness(question, way, solution)
+        if solution.verdict == "unknown":
+            return solution
+        core.update(solution.core)
+    return Solution("unsat", {}, tuple(sorted(core)))
+
+
+def _witness(question: Question, way: str, solution: Solution) -> Solution | Witness:
+    """The model's placement as a witness, if the ray cast confirms it."""
     obstacle = obstacle_of(question.shape, solution)
     placement = Placement(obstacle, question.direction, question.anchor, question.anchor)
     verification = verify(question.scene, placement)

@@ -74,10 +74,22 @@ def detected(
 @dataclass(frozen=True)
 class Disc:
     """Where a reading can come from: within `radius` m of `centre` [x, y] (m), a detector's
-    origin and its range_max."""
+    origin and its range_max, and (with `inner`, its range_min) wholly beyond `inner` m."""
 
     centre: tuple[float, float]
     radius: float  # m
+    inner: float = 0.0  # m
+
+
+def reaching_beams(profile: LaserProfile, pose: FloatArray, region: Region) -> IndexArray:
+    """The beams of the scan at robot pose [x, y, yaw] that can read an obstacle in `region`,
+    by index: those `detected` asks about by default."""
+    origins, directions = profile.rays(pose[np.newaxis, :])
+    inside = _reaches_region(
+        origins[0], directions[0], profile.range_min, profile.range_max, region
+    )
+    beams: IndexArray = np.flatnonzero(inside)
+    return beams
 
 
 def miss_ways(
@@ -95,13 +107,24 @@ def miss_ways(
     origin = origins[0, 0]
     start, extent = profile.sector_in_base()
     start += float(pose[2])
-    return {
+    ways = {
         "below": [f"(<= {linear(H=1.0, M=1.0)} {number(profile.scan_height)})"],
         "outside": _outside(shape, origin, start, extent),
         "beyond": _beyond(shape, origin, start, extent, profile.range_max, region),
         "near": _near(shape, origin, profile.range_min),
         "between": _gaps(shape, origin, profile, start, region, min_size, read_within),
     }
+    if read_within is not None:
+        apart = math.dist(origin, read_within.centre)  # m between the two scanners
+        # Both ways grow the obstacle by M and the reading needs it M deep, so even where the
+        # two bounds meet no obstacle is both.
+        # Wholly beyond range_max from this scanner, yet a part within the reader's range.
+        if apart + read_within.radius <= profile.range_max:
+            ways["beyond"] = []
+        # Wholly within range_min of this scanner, yet wholly beyond the reader's range_min.
+        if apart + profile.range_min <= read_within.inner:
+            ways["near"] = []
+    return ways
 
 
 def reaches(shape: ObstacleShape, profile: LaserProfile, pose: FloatArray) -> str:
@@ -221,6 +244,16 @@ def gap_regions(
         _sector_box(origin, low, low + profile.angle_increment, nearest, furthest, region)
         for low in lows.tolist()
     ]
+
+
+def near_region(profile: LaserProfile, pose: FloatArray, region: Region) -> Region:
+    """A box holding every obstacle miss_ways' "near" admits: within range_min of the scanner
+    at robot pose [x, y, yaw], within `region`."""
+    origins, _ = profile.rays(pose[np.newaxis, :])
+    origin = origins[0, 0]
+    low = np.maximum(origin - profile.range_min, region.low)
+    high = np.minimum(origin + profile.range_min, region.high)
+    return Region((float(low[0]), float(low[1])), (float(high[0]), float(high[1])))
 
 
 def _reachable_gaps(
