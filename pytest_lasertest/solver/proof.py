@@ -247,10 +247,16 @@ def _why(
     detector_side, _ = ROLES[direction]
     detector = scene.detector(direction)
     others = [label for label in solution.core if label != "misser"]
+    # A way with no option: the region, or the detector's own range (scans.miss_ways), left none.
+    beyond = (
+        f"and the {detector_side}'s ({detector.range_max:g} m) reaches no further"
+        if detector.range_max <= scene.misser(direction).range_max
+        else "and the robot's way lies within it"
+    )
     if not others:
         return {
             "below": f"and the {detector_side}'s ({detector.scan_height:.3f} m) is no lower",
-            "beyond": "and the robot's way lies within it",
+            "beyond": beyond,
             "between": f"and nothing {settings.min_size:g} m wide fits between them where the "
             "robot could meet it",
         }[way]
