@@ -11,6 +11,7 @@ obstacle of the smallest size can reach.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -23,8 +24,8 @@ from pytest_lasertest.model.verify import ROLES, Direction, Placement, Scene, ve
 from pytest_lasertest.solver.backend import Solution, Workspace
 from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of
 from pytest_lasertest.solver.scans import (
-    Disc,
     IndexArray,
+    Reading,
     Region,
     detected,
     gap_regions,
@@ -72,12 +73,22 @@ class Question:
         """Labelled SMT-LIB blocks: bounds, the robot's room to stop, its way, the reading (by
         `beams`, or by those that reach `within`, a box the misser's options keep the obstacle
         in, or the question's whole region)."""
+        detector, pose = self.scene.detector(self.direction), self.pose()
+        reading = reaches(self.shape, detector, pose) if relaxed else None
+        return {
+            **self._robot_blocks,
+            "detector": reading
+            or detected(self.shape, detector, pose, within or self.region(), beams),
+            **constraint_blocks(self.settings, self.shape),
+        }
+
+    @functools.cached_property
+    def _robot_blocks(self) -> dict[str, str]:
+        """The blocks every query of the question shares; a proof asks dozens of queries."""
         scene, shape = self.scene, self.shape
         footprint, stands = scene.robot.footprint_array(), scene.standstill(self.anchor)
         before = swept_polygons(scene.path, footprint, 0.0, stands)
         after = swept_polygons(scene.path, footprint, stands, scene.path.duration)
-        detector, pose = scene.detector(self.direction), self.pose()
-        reading = reaches(shape, detector, pose) if relaxed else None
         return {
             "bounds": bounds(self.settings),
             "robot": all_of([shape.clear_of_polygon(piece) for piece in before]),
@@ -85,8 +96,6 @@ class Question:
             # arrive); without it a model at the goal failed the ray cast.
             "goal": shape.clear_of_polygon(scene.arrival()),
             "path": any_of([shape.inside_polygon(piece) for piece in after]),
-            "detector": reading or detected(shape, detector, pose, within or self.region(), beams),
-            **constraint_blocks(self.settings, shape),
         }
 
     def pose(self) -> FloatArray:
@@ -96,6 +105,10 @@ class Question:
 
     def region(self) -> Region:
         """A box holding every obstacle that reaches into the robot's way after it could stop."""
+        return self._region
+
+    @functools.cached_property
+    def _region(self) -> Region:
         scene = self.scene
         footprint, stands = scene.robot.footprint_array(), scene.standstill(self.anchor)
         points = np.vstack(swept_polygons(scene.path, footprint, stands, scene.path.duration))
@@ -118,7 +131,7 @@ def prove(
     detector = scene.detector(direction)
     origins, _ = detector.rays(scene.path.poses_at(np.array([anchor])))
     centre = (float(origins[0, 0, 0]), float(origins[0, 0, 1]))
-    read = Disc(centre, detector.range_max, detector.range_min)
+    read = Reading(centre, detector.range_max, detector.range_min)
     reasons: dict[str, str] = {}
     workspace = Workspace()
     for shape in shapes:

@@ -72,9 +72,9 @@ def detected(
 
 
 @dataclass(frozen=True)
-class Disc:
-    """Where a reading can come from: within `radius` m of `centre` [x, y] (m), a detector's
-    origin and its range_max, and (with `inner`, its range_min) wholly beyond `inner` m."""
+class Reading:
+    """Where a detector reads an obstacle: a part of it within `radius` m of `centre` [x, y]
+    (m), its origin and its range_max, and all of it beyond `inner` m (its range_min)."""
 
     centre: tuple[float, float]
     radius: float  # m
@@ -98,7 +98,7 @@ def miss_ways(
     pose: FloatArray,
     region: Region,
     min_size: float,
-    read_within: Disc | None = None,
+    read_within: Reading | None = None,
 ) -> dict[str, list[str]]:
     """The ways every beam of the scan at robot pose [x, y, yaw] passes clear of the obstacle by
     M, each a list of alternatives; a way that cannot happen in the region (or, if given, with a
@@ -211,7 +211,7 @@ def _gaps(
     start: float,
     region: Region,
     min_size: float,
-    read_within: Disc | None,
+    read_within: Reading | None,
 ) -> list[str]:
     """One option per gap between neighbouring beams that can hold an obstacle min_size wide
     where the region (and `read_within`) lets it be (`_reachable_gaps`)."""
@@ -230,7 +230,7 @@ def gap_regions(
     pose: FloatArray,
     region: Region,
     min_size: float,
-    read_within: Disc | None = None,
+    read_within: Reading | None = None,
 ) -> list[Region]:
     """For each option of miss_ways' "between", in order, a box holding every obstacle that
     option admits: the part of its gap's wedge beyond where min_size fits, within `region`."""
@@ -262,7 +262,7 @@ def _reachable_gaps(
     start: float,
     region: Region,
     min_size: float,
-    read_within: Disc | None,
+    read_within: Reading | None,
 ) -> FloatArray:
     """The angles (rad) at which the gaps begin that can hold an obstacle min_size wide in the
     region, and with a part of it in `read_within` if given. Shape (G,).

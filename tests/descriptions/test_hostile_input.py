@@ -344,11 +344,7 @@ def test_a_ref_on_a_description_in_no_repository_is_an_error_not_a_silent_pass(
     # Keeps git from finding a repository that happens to enclose the temporary directories.
     monkeypatch.setenv("GIT_CEILING_DIRECTORIES", str(outside.parent.parent))
     outside.write_text(ROBOT.replace("<samples>32</samples>", "<samples>16</samples>"))
-    (repository / "gate.lasertest.yaml").write_text(
-        PAIRS.replace("urdf: robot.urdf, ref: HEAD", f"urdf: {outside}, ref: HEAD").replace(
-            "candidate: {urdf: robot.urdf}", f"candidate: {{urdf: {outside}}}"
-        )
-    )
+    (repository / "gate.lasertest.yaml").write_text(_pairs_reading(outside))
     result = pytester.runpytest()
     assert_one_clean_error(
         result,
@@ -373,11 +369,7 @@ def test_a_ref_reads_the_repository_that_holds_the_description_not_the_pairs_fil
     description = outside_repository(tmp_path_factory)
     commit_everything(description.parent)
     description.write_text(ROBOT.replace("<samples>32</samples>", "<samples>16</samples>"))
-    (repository / "gate.lasertest.yaml").write_text(
-        PAIRS.replace("urdf: robot.urdf, ref: HEAD", f"urdf: {description}, ref: HEAD").replace(
-            "candidate: {urdf: robot.urdf}", f"candidate: {{urdf: {description}}}"
-        )
-    )
+    (repository / "gate.lasertest.yaml").write_text(_pairs_reading(description))
     result = pytester.runpytest("-m", "coverage", "--laser-seed=1")
     head = git(description.parent, "rev-parse", "--short=7", "HEAD")
     result.stdout.fnmatch_lines(
@@ -500,3 +492,10 @@ def _written(element: XmlElement) -> tuple[str, dict[str, str], str]:
     """An element as xacro writes it, without the gate's mark of where it came from."""
     attributes = {key: value for key, value in element.attributes.items() if key != ORIGIN}
     return element.tag, attributes, element.text
+
+
+def _pairs_reading(description: Path) -> str:
+    """PAIRS with both scanners read from `description` instead of robot.urdf."""
+    return PAIRS.replace("urdf: robot.urdf, ref: HEAD", f"urdf: {description}, ref: HEAD").replace(
+        "candidate: {urdf: robot.urdf}", f"candidate: {{urdf: {description}}}"
+    )
