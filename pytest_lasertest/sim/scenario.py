@@ -4,8 +4,14 @@ PyBullet to a trajectory and the oracles' verdicts.
 One run is one fresh DIRECT client stepped at a fixed time step. The scanner scans at its
 update rate; each scan goes to the controller with the odometry, and the command it answers is
 driven through the wheels until the next scan. The same scenario gives the same trajectory, bit
-for bit: PyBullet is deterministic for identical command sequences, and the scan noise comes
-from a generator seeded by the scenario. The controller is made and called through `Guard`
+for bit: PyBullet is deterministic for identical command sequences, and each scan's noise comes
+from a generator of its own, seeded by the scenario's seed and the scan's index.
+
+A scan is cast only if something reads its ranges (`CastOnRead`): move_base reads one scan in
+twelve, at its costmap's update, as costmap_2d with observation_persistence 0 reads the latest
+observation. So that skipping a scan changes nothing, its noise does not come from a stream the
+scans share. The flat caster is deferred this way; PyBullet's cast meets the robot's own body
+as it stands at the scan, so it is cast at once. The controller is made and called through `Guard`
 (`guard.py`), which reads its commands exactly as returned and turns a controller that raises,
 hangs or answers no command into `ControllerError`.
 """
@@ -13,16 +19,17 @@ hangs or answers no command into `ControllerError`.
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
 
-from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D
+from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D, Pose3D
 from pytest_lasertest.model.obstacles import Obstacle
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import scan_count
-from pytest_lasertest.model.sensor import LaserProfile
+from pytest_lasertest.model.sensor import LaserProfile, LaserScanMeta
 from pytest_lasertest.nav.protocol import ControllerFactory, LaserScan, Odometry
 from pytest_lasertest.sim.client import PhysicsClient, PhysicsWorld
 from pytest_lasertest.sim.drive import Drive, Twist
@@ -120,7 +127,6 @@ class _Runner:
         start = Point2D(scenario.start.x, scenario.start.y)
         self.referee = Referee(scenario.rules, start, scenario.route, scenario.time_step)
         self.lidar = FlatLidar(scenario.profile, scenario.obstacles)
-        self.rng = np.random.default_rng(scenario.seed)
         self.meta = scenario.profile.to_laserscan_meta()
 
     def run(self) -> Run:
@@ -134,7 +140,7 @@ class _Runner:
             time = step * scenario.time_step
             measured = Twist(*world.base_twist(yaw))
             if self._scans_at(step) > scans:
-                command = Twist(*self._observe(time, pose, measured))
+                command = Twist(*self._observe(scans, time, pose, measured))
                 scans += 1
             left, right = self.drive.wheel_speeds(command, measured, scenario.time_step)
             world.step(left, right)
@@ -161,13 +167,46 @@ class _Runner:
         scenario = self.scenario
         return scan_count(scenario.profile.update_rate, step * scenario.time_step)
 
-    def _observe(self, time: float, pose: FloatArray, measured: Twist) -> tuple[float, float]:
-        profile = self.scenario.profile
-        if self.scenario.caster == "flat":
-            ranges = self.lidar.ranges(pose)
-        else:
-            ranges = ranges_from_fractions(profile, self.world.cast(*scan_rays(profile, pose)))
-        scan = LaserScan(time, noisy(profile, ranges, self.rng), self.meta, profile.pose)
+    def _observe(
+        self, index: int, time: float, pose: FloatArray, measured: Twist
+    ) -> tuple[float, float]:
+        """The controller's command for scan number `index`, taken at `time` s from `pose`."""
+        profile, seed = self.scenario.profile, self.scenario.seed
+        pose = pose.copy()  # the scan is taken here, whenever it is read
+
+        def cast() -> FloatArray:
+            if self.scenario.caster == "flat":
+                ranges = self.lidar.ranges(pose)
+            else:
+                ranges = ranges_from_fractions(profile, self.world.cast(*scan_rays(profile, pose)))
+            return noisy(profile, ranges, np.random.default_rng((seed, index)))
+
+        ranges = cast if self.scenario.caster == "flat" else cast()
+        scan = CastOnRead(time, ranges, self.meta, profile.pose)
         x, y, yaw = pose.tolist()
         odometry = Odometry(x, y, yaw, measured.linear, measured.angular)
         return self.controller.observe(scan, odometry, time)
+
+
+class CastOnRead(LaserScan):
+    """A LaserScan whose ranges are cast when first read, if given as a function that casts
+    them (as `dataclasses.replace` gives them, an array is kept as it is)."""
+
+    def __init__(
+        self,
+        stamp: float,
+        ranges: FloatArray | Callable[[], FloatArray],
+        meta: LaserScanMeta,
+        mount: Pose3D,
+    ) -> None:
+        for name, value in (("stamp", stamp), ("meta", meta), ("mount", mount)):
+            object.__setattr__(self, name, value)
+        # Not an attribute until read: `__getattr__` is asked only for what is missing.
+        object.__setattr__(self, "ranges" if isinstance(ranges, np.ndarray) else "_cast", ranges)
+
+    def __getattr__(self, name: str) -> FloatArray:
+        if name != "ranges" or "_cast" not in self.__dict__:
+            raise AttributeError(name)
+        ranges: FloatArray = self.__dict__.pop("_cast")()
+        object.__setattr__(self, "ranges", ranges)
+        return ranges

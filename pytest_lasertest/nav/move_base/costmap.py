@@ -2,7 +2,8 @@
 
 Each update does what the ObstacleLayer does with one laser scan:
 
-1. the window moves with the robot by whole cells, keeping what it still covers;
+1. the window moves with the robot by whole cells, keeping what it still covers (a view that
+   slides over a larger buffer: the cells are moved only once it reaches the buffer's edge);
 2. the scan becomes points: with `inf_is_valid`, +inf reads range_max - 1e-4, and only readings
    with range_min <= r < range_max are kept (laser_geometry's projection);
 3. clearing comes first: the ray from the laser to each point, clipped to the window and to
@@ -21,8 +22,10 @@ unknown unless it lies within the inscribed radius.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 import numpy.typing as npt
@@ -61,11 +64,16 @@ class CostmapSettings:
 class Costmap:
     """The rolling costmap of one robot, updated scan by scan."""
 
+    # Cells the window may slide each way over its buffer before its cells are moved: the
+    # robot crosses a cell or two per update, and a 100 m global costmap holds 2.8 MB.
+    slack: ClassVar[int] = 64
+
     def __init__(self, settings: CostmapSettings, footprint: FloatArray) -> None:
         self.settings = settings
         self.footprint = footprint  # (V, 2) m, counter-clockwise in the base frame
         self.unseen = UNKNOWN if settings.track_unknown_space else FREE
-        self.grid: Grid = np.full((settings.cells, settings.cells), self.unseen, dtype=np.uint8)
+        self._buffer, self._corner = self._new_buffer()
+        self.grid: Grid = self._window()
         self.origin = (0.0, 0.0)  # m, the world position of cell (0, 0)'s lower left corner
         self.inflation = InflationCost.of(settings, footprint)
 
@@ -152,12 +160,45 @@ class Costmap:
         shift_y = int((y - half - self.origin[1]) / resolution)
         if shift_x == 0 and shift_y == 0:
             return
-        kept = np.full_like(self.grid, self.unseen)
+        corner_x, corner_y = self._corner[0] + shift_x, self._corner[1] + shift_y
+        if 0 <= corner_x <= 2 * self.slack and 0 <= corner_y <= 2 * self.slack:
+            self._corner = (corner_x, corner_y)
+            self.grid = self._window()
+            self._forget_entering(shift_x, shift_y)
+        else:
+            self._move_cells(shift_x, shift_y)
+        self.origin = (self.origin[0] + shift_x * resolution, self.origin[1] + shift_y * resolution)
+
+    def _new_buffer(self) -> tuple[Grid, tuple[int, int]]:
+        """A buffer of unseen cells `slack` cells wider than the window on every side, and the cell
+        (x, y) of the buffer where the window's lower left corner lies."""
+        width = self.settings.cells + 2 * self.slack
+        return np.full((width, width), self.unseen, dtype=np.uint8), (self.slack, self.slack)
+
+    def _window(self) -> Grid:
+        """The window: a view of the buffer."""
+        (x, y), cells = self._corner, self.settings.cells
+        return self._buffer[y : y + cells, x : x + cells]
+
+    def _forget_entering(self, shift_x: int, shift_y: int) -> None:
+        """Make the cells the window slid onto unseen: the buffer may remember them from an
+        earlier visit, which a rolling window forgets."""
+        cells = self.settings.cells
+        # The window's cells the old one also covered; the rest entered.
+        kept_x, kept_y = _overlap(-shift_x, cells), _overlap(-shift_y, cells)
+        columns = slice(kept_x.stop, cells) if shift_x > 0 else slice(0, kept_x.start)
+        rows = slice(kept_y.stop, cells) if shift_y > 0 else slice(0, kept_y.start)
+        self.grid[:, columns] = self.unseen
+        self.grid[rows, :] = self.unseen
+
+    def _move_cells(self, shift_x: int, shift_y: int) -> None:
+        """Move the cells the window keeps into a fresh buffer, the window at its middle."""
+        cells, old = self.settings.cells, self.grid
+        self._buffer, self._corner = self._new_buffer()
+        self.grid = self._window()
         source, target = _overlap(shift_x, cells), _overlap(-shift_x, cells)
         rows_source, rows_target = _overlap(shift_y, cells), _overlap(-shift_y, cells)
-        kept[rows_target, target] = self.grid[rows_source, source]
-        self.grid = kept
-        self.origin = (self.origin[0] + shift_x * resolution, self.origin[1] + shift_y * resolution)
+        self.grid[rows_target, target] = old[rows_source, source]
 
     def _clear(self, laser: tuple[float, float], points: FloatArray) -> None:
         """Free the cells on each ray from the laser to a point, up to `raytrace_range`."""
@@ -169,9 +210,12 @@ class Costmap:
         # Rays that end in one cell visit the same cells: far out, beams outnumber cells.
         ends = np.unique(end_x[valid] + end_y[valid] * cells)
         longest = math.ceil(self.settings.raytrace_range / self.settings.resolution)
-        start = (int(start_x[0]), int(start_y[0]))
-        index = ray_indices(*start, ends % cells, ends // cells, cells, longest)
-        self.grid.reshape(-1)[index] = FREE
+        # Traced in the buffer's cells: the window is a view of it, not a block of its own.
+        (corner_x, corner_y), stride = self._corner, self._buffer.shape[1]
+        start = (int(start_x[0]) + corner_x, int(start_y[0]) + corner_y)
+        ends_x, ends_y = ends % cells + corner_x, ends // cells + corner_y
+        index = ray_indices(*start, ends_x, ends_y, stride, longest)
+        self._buffer.reshape(-1)[index] = FREE
 
     def _clipped(self, laser: tuple[float, float], points: FloatArray) -> FloatArray:
         """The points moved back along their rays onto the window where they lie beyond it, as
@@ -206,22 +250,32 @@ class Costmap:
         """Free the cells the footprint at pose [x, y, yaw] covers: each column between its
         outline's lowest and highest cell, as costmap_2d's convexFillCells does."""
         corners_x, corners_y, _ = self.cell_of(place(self.footprint, np.array(robot)))
-        # The outline, edge by edge from each corner to the next, stays in the corners' box.
         left, bottom = int(corners_x.min()), int(corners_y.min())
-        box_x, box_y = corners_x - left, corners_y - bottom
-        width = int(box_x.max()) + 1
-        following = np.roll(np.arange(len(box_x)), -1)
-        outline = ray_indices(box_x, box_y, box_x[following], box_y[following], width)
-        rows, columns = np.divmod(outline, width)
-        low, high = np.full(width, np.iinfo(np.int32).max), np.full(width, -1)
-        np.minimum.at(low, columns, rows)
-        np.maximum.at(high, columns, rows)
-        row = np.arange(int(high.max()) + 1)[:, np.newaxis]
-        covered_rows, covered_columns = np.nonzero((row >= low) & (row <= high))
-        x, y = covered_columns + left, covered_rows + bottom
+        box = tuple((corners_x - left).tolist()), tuple((corners_y - bottom).tolist())
+        columns, rows = _convex_fill(*box)
+        x, y = columns + left, rows + bottom
         cells = self.settings.cells
         inside = (x >= 0) & (x < cells) & (y >= 0) & (y < cells)
         self.grid[y[inside], x[inside]] = FREE
+
+
+@functools.lru_cache(maxsize=4096)
+def _convex_fill(box_x: tuple[int, ...], box_y: tuple[int, ...]) -> tuple[IntArray, IntArray]:
+    """The cells (columns, rows) of the polygon with corner cells `box_x`, `box_y` (counted
+    from their lowest), filled as convexFillCells does. A robot driving on meets the same
+    corner cells again and again, so the fills are remembered."""
+    corners_x, corners_y = np.array(box_x), np.array(box_y)
+    width = int(corners_x.max()) + 1
+    # The outline, edge by edge from each corner to the next, stays in the corners' box.
+    following = np.roll(np.arange(len(corners_x)), -1)
+    outline = ray_indices(corners_x, corners_y, corners_x[following], corners_y[following], width)
+    rows, columns = np.divmod(outline, width)
+    low, high = np.full(width, np.iinfo(np.int32).max), np.full(width, -1)
+    np.minimum.at(low, columns, rows)
+    np.maximum.at(high, columns, rows)
+    row = np.arange(int(high.max()) + 1)[:, np.newaxis]
+    covered_rows, covered_columns = np.nonzero((row >= low) & (row <= high))
+    return covered_columns, covered_rows
 
 
 @dataclass(frozen=True)

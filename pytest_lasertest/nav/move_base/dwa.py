@@ -83,8 +83,21 @@ class Rollouts:
 
     linear: FloatArray  # (S,) m/s
     angular: FloatArray  # (S,) rad/s
-    poses: FloatArray  # (S, T, 3) [x, y, yaw], m, m, rad; the last valid step repeated
-    ends: FloatArray  # (S, 3) the pose of each one's last step
+    # The pose after each step, the last valid step repeated: (S, T) each, m, m, rad. Apart,
+    # not stacked: the obstacle check reads each whole, and stacking copies 8,000 poses.
+    x: FloatArray
+    y: FloatArray
+    yaw: FloatArray
+
+    @property
+    def poses(self) -> FloatArray:
+        """The pose [x, y, yaw] after each step, shape (S, T, 3)."""
+        return np.stack([self.x, self.y, self.yaw], axis=2)
+
+    @property
+    def ends(self) -> FloatArray:
+        """The pose [x, y, yaw] of each one's last step, shape (S, 3)."""
+        return np.column_stack([self.x[:, -1], self.y[:, -1], self.yaw[:, -1]])
 
 
 class LocalPlanner:
@@ -161,8 +174,7 @@ class LocalPlanner:
         advance = (linear * dt)[:, np.newaxis] * moving  # (S, T) m
         x = pose[0] + np.cumsum(advance * np.cos(heading), axis=1)
         y = pose[1] + np.cumsum(advance * np.sin(heading), axis=1)
-        poses = np.stack([x, y, yaw], axis=2)
-        return Rollouts(linear, angular, poses, poses[:, -1])
+        return Rollouts(linear, angular, x, y, yaw)
 
     def scores(
         self, rollouts: Rollouts, pose: tuple[float, float, float], around: Surroundings
@@ -225,22 +237,25 @@ class LocalPlanner:
         span = max(settings.max_trans_vel - slowest, EPSILON)
         grow = np.where(speed > slowest, (speed - slowest) / span, 0.0)
         scale = 1.0 + settings.max_scaling_factor * grow  # (S,)
-        poses = rollouts.poses.reshape(-1, 3)
-        near = _within(around.lethal, poses, self.reach * float(scale.max()))
+        x, y = rollouts.x.ravel(), rollouts.y.ravel()
+        near = _within(around.lethal, x, y, self.reach * float(scale.max()))
         if not len(near):
             return np.zeros(count)
-        gap = self._gaps(poses, near, np.repeat(scale, rollouts.poses.shape[1]))
+        steps = rollouts.x.shape[1]
+        gap = self._gaps(x, y, rollouts.yaw.ravel(), near, np.repeat(scale, steps))
         least = gap.reshape(count, -1).min(axis=1) - self.half_cell  # m, to a lethal cell
         return np.where(least <= 0.0, np.inf, settings.occdist_scale * self.cost(least))
 
-    def _gaps(self, poses: FloatArray, lethal: FloatArray, scale: FloatArray) -> FloatArray:
+    def _gaps(
+        self, x: FloatArray, y: FloatArray, yaw: FloatArray, lethal: FloatArray, scale: FloatArray
+    ) -> FloatArray:
         """The least signed distance (m) from the footprint, grown by `scale` (P,), at each
-        pose (P, 3) to a lethal cell centre (N, 2), shape (P,): <= 0 when one lies under it.
-        Outside, the distance to the farthest edge line: exact beside an edge, less by a
-        corner."""
-        dx = lethal[:, 0] - poses[:, 0:1]  # (P, N)
-        dy = lethal[:, 1] - poses[:, 1:2]
-        cos, sin = np.cos(poses[:, 2:3]), np.sin(poses[:, 2:3])
+        pose [x, y, yaw] (P,) each, to a lethal cell centre (N, 2), shape (P,): <= 0 when one
+        lies under it. Outside, the distance to the farthest edge line: exact beside an edge,
+        less by a corner."""
+        dx = lethal[:, 0] - x[:, np.newaxis]  # (P, N)
+        dy = lethal[:, 1] - y[:, np.newaxis]
+        cos, sin = np.cos(yaw[:, np.newaxis]), np.sin(yaw[:, np.newaxis])
         forward, left = dx * cos + dy * sin, dy * cos - dx * sin
         signed = np.full(forward.shape, -np.inf)
         offsets = scale[:, np.newaxis] * self._offsets  # (P, V)
@@ -258,7 +273,9 @@ class LocalPlanner:
         (N, 2)."""
         if not len(lethal):
             return True
-        return bool((self._gaps(poses, lethal, np.ones(len(poses))) > self.half_cell).all())
+        x, y, yaw = poses.T
+        gaps = self._gaps(x, y, yaw, lethal, np.ones(len(poses)))
+        return bool((gaps > self.half_cell).all())
 
     def _too_near(self, points: FloatArray, lethal: FloatArray) -> np.ndarray:
         """Which points (P, 2) lie in an inscribed cell: within the inscribed radius of a
@@ -350,9 +367,11 @@ def _nearest(points: FloatArray, others: FloatArray) -> FloatArray:
     return nearest
 
 
-def _within(points: FloatArray, poses: FloatArray, reach: float) -> FloatArray:
-    """The points (N, 2) within `reach` m of the bounding box of the poses' positions."""
-    low, high = poses[:, :2].min(axis=0) - reach, poses[:, :2].max(axis=0) + reach
-    inside = np.all((points >= low) & (points <= high), axis=1)
+def _within(points: FloatArray, x: FloatArray, y: FloatArray, reach: float) -> FloatArray:
+    """The points (N, 2) within `reach` m of the bounding box of the positions (P,) x, (P,) y."""
+    if not len(points):
+        return points
+    inside = (points[:, 0] >= x.min() - reach) & (points[:, 0] <= x.max() + reach)
+    inside &= (points[:, 1] >= y.min() - reach) & (points[:, 1] <= y.max() + reach)
     kept: FloatArray = points[inside]
     return kept

@@ -270,11 +270,12 @@ class MoveBase:
         """What DWA scores against: the plan, pruned behind the robot, from its first point in
         the local window to the last before it leaves it, and the lethal cells near the
         robot."""
-        here = np.array(pose[:2])
-        near = np.hypot(*(self.plan - here).T) < PRUNE_DISTANCE
+        away = np.hypot(self.plan[:, 0] - pose[0], self.plan[:, 1] - pose[1])  # (K,) m
+        near = away < PRUNE_DISTANCE
         if near.any():
-            self.plan = self.plan[int(np.argmax(near)) :]
-        inside = np.hypot(*(self.plan - here).T) <= self.settings.costmap.size / 2.0
+            first = int(np.argmax(near))
+            self.plan, away = self.plan[first:], away[first:]
+        inside = away <= self.settings.costmap.size / 2.0
         local = self.plan[int(np.argmax(inside)) :] if inside.any() else self.plan[:0]
         leaves = ~inside[len(self.plan) - len(local) :]
         if leaves.any():

@@ -84,6 +84,40 @@ def test_the_window_follows_the_robot_and_keeps_what_it_marked_where_it_was() ->
     assert cost_at(costmap, 3.02, 0.0) == LETHAL
 
 
+def test_a_cell_the_window_left_is_unseen_when_the_window_comes_back_over_it() -> None:
+    costmap = Costmap(dataclasses.replace(SETTINGS, size=4.0), FOOTPRINT)
+    costmap.update(scan(1.5), ROBOT)
+    assert cost_at(costmap, 1.5, 0.0) == LETHAL
+    # 1 m back, the window (2 m either side) leaves the marked cell behind: a slide of 20
+    # cells over the buffer, which still holds the cell.
+    costmap.update(scan(np.inf), (-1.0, 0.0, 0.0))
+    costmap.update(scan(np.inf), ROBOT)
+    assert cost_at(costmap, 1.5, 0.0) == FREE
+
+
+class MovingCostmap(Costmap):
+    """A window that moves its cells at every shift, as costmap_2d's updateOrigin does."""
+
+    slack = 0
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_sliding_window_holds_the_cells_of_one_that_moves_its_cells_at_every_shift(
+    seed: int,
+) -> None:
+    rng = np.random.default_rng(seed)
+    sliding, moving = Costmap(SETTINGS, FOOTPRINT), MovingCostmap(SETTINGS, FOOTPRINT)
+    pose = np.zeros(3)
+    for _ in range(150):  # a walk of several metres each way: past the buffer's edge
+        pose += (*rng.normal(0.0, 0.5, 2), rng.uniform(-1.0, 1.0))
+        robot = (float(pose[0]), float(pose[1]), float(pose[2]))
+        reading = scan(float(rng.uniform(0.6, 4.0)))
+        sliding.update(reading, robot)
+        moving.update(reading, robot)
+        assert sliding.origin == moving.origin
+        np.testing.assert_array_equal(sliding.grid, moving.grid)
+
+
 def test_the_cells_under_the_footprint_are_freed() -> None:
     costmap = Costmap(SETTINGS, FOOTPRINT)
     costmap.grid[:] = LETHAL
