@@ -172,7 +172,7 @@ class _Runner:
     ) -> tuple[float, float]:
         """The controller's command for scan number `index`, taken at `time` s from `pose`."""
         profile, seed = self.scenario.profile, self.scenario.seed
-        pose = pose.copy()  # the scan is taken here, whenever it is read
+        # The scan is taken at `pose` (an array of this step's own), whenever it is read.
 
         def cast() -> FloatArray:
             if self.scenario.caster == "flat":

@@ -222,10 +222,13 @@ class Costmap:
         costmap_2d's raytraceFreespace does: low edges first, then high ones, a millimetre
         inside."""
         (origin_x, origin_y), size = laser, self.settings.cells * self.settings.resolution
-        run_x, run_y = points[:, 0] - origin_x, points[:, 1] - origin_y
-        x, y = points[:, 0].copy(), points[:, 1].copy()
         low_x, low_y = self.origin
         high_x, high_y = low_x + size, low_y + size
+        (least_x, least_y), (most_x, most_y) = points.min(axis=0), points.max(axis=0)
+        if least_x >= low_x and least_y >= low_y and most_x <= high_x and most_y <= high_y:
+            return points  # all on the window: a global costmap's scans mostly are
+        run_x, run_y = points[:, 0] - origin_x, points[:, 1] - origin_y
+        x, y = points[:, 0].copy(), points[:, 1].copy()
         with np.errstate(divide="ignore", invalid="ignore"):
             out = x < low_x
             y[out], x[out] = origin_y + run_y[out] * (low_x - origin_x) / run_x[out], low_x

@@ -362,9 +362,25 @@ def _nearest(points: FloatArray, others: FloatArray) -> FloatArray:
     """The distance from each point (P, 2) to the nearest of `others` (Q, 2), m; inf if none."""
     if not len(others):
         return np.full(len(points), np.inf)
+    others = _candidates(points, others)
     gaps = np.hypot(points[:, 0:1] - others[:, 0], points[:, 1:2] - others[:, 1])
     nearest: FloatArray = gaps.min(axis=1)
     return nearest
+
+
+def _candidates(points: FloatArray, others: FloatArray) -> FloatArray:
+    """The `others` (Q, 2) that may be nearest to one of the points (P, 2): no point lies
+    further from its nearest than the least, over the others, of the distance to the far
+    corner of the points' bounding box, and an other further than that from the box is
+    nobody's nearest. The plan runs metres past the rollouts' ends; this leaves the metre
+    around them."""
+    low, high = points.min(axis=0), points.max(axis=0)
+    far = np.maximum(np.abs(others - low), np.abs(others - high))  # (Q, 2) m
+    bound = float(np.hypot(far[:, 0], far[:, 1]).min())
+    out = np.maximum(np.maximum(low - others, others - high), 0.0)
+    # The margin covers hypot's rounding: an other kept in doubt changes no minimum.
+    kept: FloatArray = others[np.hypot(out[:, 0], out[:, 1]) <= bound * (1.0 + 1e-9) + 1e-12]
+    return kept
 
 
 def _within(points: FloatArray, x: FloatArray, y: FloatArray, reach: float) -> FloatArray:
