@@ -142,13 +142,25 @@ def _calibrated(
     unit = rng.uniform(0.0, 1.0, size=(CALIBRATION_POINTS, len(AXES)))
     corners = np.array(np.meshgrid(*[[0.0, 1.0]] * len(AXES))).reshape(len(AXES), -1).T
     sample = np.concatenate([corners, unit])
+    tolerated = math.floor(TOLERATED_REJECTIONS * len(sample))
     for _ in range(ROUNDS):
-        offsets = [_at(box, fractions) for fractions in sample]
-        failures = sum(not holds(offset) for offset in offsets)
-        if failures <= TOLERATED_REJECTIONS * len(offsets):
+        if _failures(box, sample, holds, tolerated) <= tolerated:
             return box
         box = box.scaled(SHRINK)
     return box.scaled(0.0)
+
+
+def _failures(
+    box: OffsetBox, sample: np.ndarray, holds: Callable[[Offset], bool], tolerated: int
+) -> int:
+    """How many of the `sample` (fractions of the box) fail to hold, counted only up to one
+    past `tolerated`: the box is shrunk either way, and each count is an exact ray cast."""
+    failures = 0
+    for fractions in sample:
+        failures += not holds(_at(box, fractions))
+        if failures > tolerated:
+            break
+    return failures
 
 
 def _at(box: OffsetBox, fractions: np.ndarray) -> Offset:

@@ -53,9 +53,10 @@ def readings(reads: range, caster: Caster = "flat") -> dict[int, np.ndarray]:
 
 @pytest.mark.parametrize("caster", ["flat", "pybullet"])
 def test_a_scan_reads_the_same_whichever_scans_were_read_before_it(caster: Caster) -> None:
-    every = readings(range(0, 150), caster)
+    every = readings(range(150), caster)
     some = readings(range(0, 150, 7), caster)
-    assert NOISY.noise is not None and NOISY.noise.stddev > 0.0
+    assert NOISY.noise is not None
+    assert NOISY.noise.stddev > 0.0
     assert len(every) == 150
     assert set(some) == set(range(0, 150, 7))
     for index, ranges in some.items():
@@ -68,9 +69,7 @@ def test_a_scan_kept_and_read_after_the_run_reads_what_it_would_have_read_when_t
     kept: list[LaserScan] = []
 
     class Keeper:
-        def observe(
-            self, scan: LaserScan, odometry: Odometry, time: float
-        ) -> tuple[float, float]:
+        def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
             kept.append(scan)
             return 0.3, 0.0  # as Reader drives: the same poses, scan by scan
 
@@ -86,9 +85,7 @@ def test_a_scan_replaced_with_new_ranges_keeps_them() -> None:
     scans: list[LaserScan] = []
 
     class Filter:
-        def observe(
-            self, scan: LaserScan, odometry: Odometry, time: float
-        ) -> tuple[float, float]:
+        def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
             scans.append(dataclasses.replace(scan, ranges=np.zeros(3)))
             return 0.0, 0.0
 
