@@ -278,6 +278,8 @@ def _convex_fill(box_x: tuple[int, ...], box_y: tuple[int, ...]) -> tuple[IntArr
     np.maximum.at(high, columns, rows)
     row = np.arange(int(high.max()) + 1)[:, np.newaxis]
     covered_rows, covered_columns = np.nonzero((row >= low) & (row <= high))
+    for remembered in (covered_columns, covered_rows):
+        remembered.setflags(write=False)  # shared by every later call
     return covered_columns, covered_rows
 
 

@@ -172,8 +172,12 @@ class LocalPlanner:
         heading = np.concatenate([np.full((len(linear), 1), pose[2]), yaw[:, :-1]], axis=1)
         moving = (j > 0) & (j < steps[:, np.newaxis])
         advance = (linear * dt)[:, np.newaxis] * moving  # (S, T) m
-        x = pose[0] + np.cumsum(advance * np.cos(heading), axis=1)
-        y = pose[1] + np.cumsum(advance * np.sin(heading), axis=1)
+        # The heading's cosine and sine only where the rollout moves (about half its steps):
+        # elsewhere the advance is zero, and so is what it adds.
+        cos = np.cos(heading, out=np.zeros_like(heading), where=moving)
+        sin = np.sin(heading, out=np.zeros_like(heading), where=moving)
+        x = pose[0] + np.cumsum(advance * cos, axis=1)
+        y = pose[1] + np.cumsum(advance * sin, axis=1)
         return Rollouts(linear, angular, x, y, yaw)
 
     def scores(
@@ -181,8 +185,8 @@ class LocalPlanner:
     ) -> FloatArray:
         """Each rollout's total cost, shape (S,); inf where rejected."""
         settings, lethal = self.settings, around.lethal
-        ends, reach = rollouts.ends[:, :2], settings.forward_point_distance
-        yaw = rollouts.ends[:, 2]
+        last, reach = rollouts.ends, settings.forward_point_distance
+        ends, yaw = last[:, :2], last[:, 2]
         ahead = ends + reach * np.column_stack([np.cos(yaw), np.sin(yaw)])
         # The local goal is the plan's last point in the window; the nose is drawn to a point
         # forward_point_distance beyond it, on the bearing from the robot.
