@@ -5,16 +5,16 @@ One run is one fresh DIRECT client stepped at a fixed time step. The scanner sca
 update rate; each scan goes to the controller with the odometry, and the command it answers is
 driven through the wheels until the next scan. The same scenario gives the same trajectory, bit
 for bit: PyBullet is deterministic for identical command sequences, and each scan's noise comes
-from a generator of its own, seeded by the scenario's seed and the scan's index.
+from a generator of its own, seeded by the scenario's seed and the scan's index. The controller
+is made and called through `Guard` (`guard.py`), which reads its commands exactly as returned
+and turns a controller that raises, hangs or answers no command into `ControllerError`.
 
 A scan is cast only if something reads its ranges (`CastOnRead`): move_base reads one scan in
 twelve, at its costmap's update, as costmap_2d with observation_persistence 0 reads the latest
 observation. So that skipping a scan changes nothing, its noise does not come from a stream the
 scans share. The flat caster is deferred this way; PyBullet's cast meets the robot's own body
 as it stands at the scan, so it is cast at once. A deferred cast runs within the controller's
-call and counts toward its time (`guard.py`): some 40 us a scan read. The controller is made and called through `Guard`
-(`guard.py`), which reads its commands exactly as returned and turns a controller that raises,
-hangs or answers no command into `ControllerError`.
+call and counts toward its time: some 40 us a scan read.
 """
 
 from __future__ import annotations
