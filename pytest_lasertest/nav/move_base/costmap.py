@@ -131,9 +131,19 @@ class Costmap:
         self.grid[rows, columns] = kept[rows, columns]
 
     def _inflation(self, lethal: npt.NDArray[np.bool_], reach: int) -> Grid:
-        """The InflationLayer's cost of each cell, shape of `lethal`."""
-        distance = lethal_distances(lethal, reach) * self.settings.resolution
-        grid: Grid = self.inflation(distance).astype(np.uint8)
+        """The InflationLayer's cost of each cell, shape of `lethal`: inflated only around the
+        lethal cells' bounding box, as a cell further than `reach` from all of them costs
+        nothing (a placement's costmap holds one obstacle in a plan's hundred thousand cells)."""
+        grid: Grid = np.zeros(lethal.shape, dtype=np.uint8)
+        rows, columns = np.flatnonzero(lethal.any(axis=1)), np.flatnonzero(lethal.any(axis=0))
+        if not len(rows):
+            return grid
+        block = (
+            slice(max(int(rows[0]) - reach, 0), int(rows[-1]) + reach + 1),
+            slice(max(int(columns[0]) - reach, 0), int(columns[-1]) + reach + 1),
+        )
+        distance = lethal_distances(lethal[block], reach) * self.settings.resolution
+        grid[block] = self.inflation(distance).astype(np.uint8)
         return grid
 
     def _observation(

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import numpy.typing as npt
 import pytest
@@ -13,6 +15,7 @@ from pytest_lasertest.nav.move_base.costmap import (
     UNKNOWN,
     Costmap,
     CostmapSettings,
+    lethal_distances,
 )
 from tests.helpers.costmap import cost_at, scan
 
@@ -124,6 +127,23 @@ def test_the_costs_of_a_block_are_the_whole_windows_costs_cut_to_that_block(
     np.testing.assert_array_equal(block, whole[rows, columns])
     assert (whole == INSCRIBED).any()
     assert ((whole > FREE) & (whole < INSCRIBED)).any()
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_a_few_lethal_cells_inflate_as_the_whole_window_inflates_them(seed: int) -> None:
+    """Inflation is computed around the lethal cells only; the costs equal those of inflating
+    every cell of the window by its distance to the nearest lethal one."""
+    rng = np.random.default_rng(seed)
+    settings = CostmapSettings(size=6.0, inflation_radius=0.55)
+    costmap = Costmap(settings, FOOTPRINT)
+    for _ in range(int(rng.integers(1, 4))):  # a few small clusters, some at an edge
+        x, y = rng.integers(0, settings.cells, 2)
+        costmap.grid[y : y + 3, x : x + 2] = LETHAL
+    reach = math.ceil(settings.inflation_radius / settings.resolution)
+    distance = lethal_distances(costmap.grid == LETHAL, reach) * settings.resolution
+    expected = np.maximum(costmap.grid, costmap.inflation(distance).astype(np.uint8))
+    np.testing.assert_array_equal(costmap.costs(), expected)
+    assert (costmap.costs() == FREE).any()
 
 
 # --- clear_outside ---
