@@ -61,7 +61,7 @@ def test_a_scan_reads_the_same_whichever_scans_were_read_before_it(caster: Caste
     assert set(some) == set(range(0, 150, 7))
     for index, ranges in some.items():
         np.testing.assert_array_equal(ranges, every[index])
-    # The noise differs from scan to scan: a stream per scan, not one value reused.
+    # Not one scan served twice: 20 ms on, the next reads differently.
     assert not np.array_equal(every[0], every[1])
 
 
