@@ -78,7 +78,7 @@ class Question:
         return {
             **self._robot_blocks,
             "detector": reading
-            or detected(self.shape, detector, pose, within or self.region(), beams),
+            or detected(self.shape, detector, pose, within or self.region, beams),
             **constraint_blocks(self.settings, self.shape),
         }
 
@@ -103,12 +103,9 @@ class Question:
         poses: FloatArray = self.scene.path.poses_at(np.array([self.anchor]))[0]
         return poses
 
+    @functools.cached_property
     def region(self) -> Region:
         """A box holding every obstacle that reaches into the robot's way after it could stop."""
-        return self._region
-
-    @functools.cached_property
-    def _region(self) -> Region:
         scene = self.scene
         footprint, stands = scene.robot.footprint_array(), scene.standstill(self.anchor)
         points = np.vstack(swept_polygons(scene.path, footprint, stands, scene.path.duration))
@@ -136,7 +133,7 @@ def prove(
     workspace = Workspace()
     for shape in shapes:
         question = Question(scene, direction, anchor, shape, settings)
-        region = question.region()
+        region = question.region
         ways = miss_ways(shape, misser, pose, region, settings.min_size, read)
         # Where each option keeps the obstacle, for the ways that keep it in a small part of
         # the region: the detector's disjunction then holds only the beams that reach it.
@@ -219,7 +216,7 @@ def _rule_out_by_beams(
     """One option Z3 cannot decide against every beam of the detector at once, asked against
     BEAM_CHUNK beams at a time."""
     detector = question.scene.detector(question.direction)
-    beams = reaching_beams(detector, question.pose(), within or question.region())
+    beams = reaching_beams(detector, question.pose(), within or question.region)
     core = {"detector", "misser"}  # no beam reaches: the reading and the way rule it out
     for first in range(0, len(beams), BEAM_CHUNK):
         blocks = {

@@ -55,12 +55,10 @@ def detected(
     `beams` (indices) limits the disjunction to those beams; by default every beam that can
     reach the region takes part.
     """
+    if beams is None:
+        beams = reaching_beams(profile, pose, region)
     origins, directions = profile.rays(pose[np.newaxis, :])
     origins, directions = origins[0], directions[0]
-    if beams is None:
-        beams = np.flatnonzero(
-            _reaches_region(origins, directions, profile.range_min, profile.range_max, region)
-        )
     options = []
     for origin, direction in zip(origins[beams], directions[beams], strict=True):
         parts = [shape.crossed_by(origin, direction, profile.range_min, profile.range_max)]
