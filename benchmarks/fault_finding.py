@@ -8,9 +8,11 @@ it, at the same number of simulated runs:
   placement items, each searching around its witness with the `ci` budget;
 - random corridor: obstacles drawn uniformly within 1 m of the route, as many runs as the gate;
 - random world: obstacles drawn uniformly in the route's box widened by 2 m, as many runs.
-Every simulated run is counted, baseline runs and the check below included. A placement kills
+Every simulated run is counted, baseline runs and the checks below included. A placement kills
 the cell when the candidate fails under the fault, the baseline passes under it, and the
-candidate passes without it: the fault, not the new scanner alone, is what fails the robot. A
+candidate passes without it: the fault, not the new scanner alone, is what fails the robot; and
+all three hold again under a second, independent draw of the scan noise, so that a kill is the
+fault's doing and not one draw of 1 mm noise on a run that passes or fails by millimetres. A
 method stops at its first kill: for the gate, at the trial of the item that would have failed
 there (the runs the item would go on to spend shrinking it are not counted); each check without
 the fault is counted for both. The equivalent mutant must never be killed.
@@ -119,17 +121,35 @@ class Search:
         self.cache = Counter()
 
     def drive(
-        self, profile: LaserProfile, obstacles: tuple[Obstacle, ...], controller: ControllerChoice
+        self,
+        profile: LaserProfile,
+        obstacles: tuple[Obstacle, ...],
+        controller: ControllerChoice,
+        seed: int | None = None,
     ) -> Run:
-        world = scenario(self.bench.spec, profile, obstacles, self.cell.seed)
+        """A run under the cell's scan noise, or under `seed`'s."""
+        noise = self.cell.seed if seed is None else seed
+        world = scenario(self.bench.spec, profile, obstacles, noise)
         return self.cache.run(world, controller, self.bench.client)
 
     def kills(self, obstacles: tuple[Obstacle, ...], candidate: Run, baseline: Run | None) -> bool:
         """Whether the faulty runs (the baseline's only if the candidate failed) kill: the
-        candidate fails, the baseline passes, and without the fault the candidate passes."""
+        candidate fails, the baseline passes, and without the fault the candidate passes; and
+        so again under a second draw of the scan noise."""
         if candidate.passed or baseline is None or not baseline.passed:
             return False
-        return self.drive(self.pair.candidate.profile, obstacles, self.clean).passed
+        return self.drive(self.pair.candidate.profile, obstacles, self.clean).passed and (
+            self.kills_again(obstacles)
+        )
+
+    def kills_again(self, obstacles: tuple[Obstacle, ...]) -> bool:
+        """Whether the three checks of a kill hold under a second, independent noise draw."""
+        seed, pair = _seed(self.cell, "again"), self.pair
+        return (
+            not self.drive(pair.candidate.profile, obstacles, self.fault, seed).passed
+            and self.drive(pair.baseline.profile, obstacles, self.fault, seed).passed
+            and self.drive(pair.candidate.profile, obstacles, self.clean, seed).passed
+        )
 
     def outcome(
         self, obstacles: tuple[Obstacle, ...] | None, simulations: int | None = None
@@ -173,7 +193,7 @@ def gate(bench: Bench, cell: Cell) -> Outcome:
         for result in found.trials.results.values():  # in the order they were tried
             obstacles = (result.placement.obstacle,)
             if search.kills(obstacles, result.candidate, result.baseline):
-                checks = search.cache.simulations - searched  # the runs without the fault
+                checks = search.cache.simulations - searched  # the checks' runs
                 return search.outcome(obstacles, _tried_by(search.cache, result, before) + checks)
     return search.outcome(None)
 

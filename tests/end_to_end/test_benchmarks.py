@@ -99,3 +99,34 @@ def test_the_gate_is_charged_the_runs_up_to_its_killing_trial_not_the_shrinking_
     # A trial whose runs an earlier item simulated happens within this one, not before it.
     cached = SimpleNamespace(candidate=runs[0], baseline=None)
     assert fault_finding._tried_by(counter, cached, 3) == 3
+
+
+def test_a_kill_counts_only_if_a_second_draw_of_the_scan_noise_repeats_it(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
+    fault_finding = importlib.import_module("fault_finding")
+    cell = fault_finding.Cell("speckle", "fewer_beams", 1)
+    pair = SimpleNamespace(
+        candidate=SimpleNamespace(profile="new"), baseline=SimpleNamespace(profile="old")
+    )
+    drives: list[tuple[str, str, int | None]] = []
+
+    def search(candidate_fails_again: bool) -> SimpleNamespace:
+        def drive(profile: str, obstacles: object, controller: str, seed: int | None = None):
+            drives.append((profile, controller, seed))
+            fails = profile == "new" and controller == "fault"
+            again = seed is not None and not candidate_fails_again
+            return SimpleNamespace(passed=not fails or again)
+
+        fake = SimpleNamespace(cell=cell, pair=pair, fault="fault", clean="clean", drive=drive)
+        fake.kills_again = lambda obstacles: fault_finding.Search.kills_again(fake, obstacles)
+        return fake
+
+    failed, passed = SimpleNamespace(passed=False), SimpleNamespace(passed=True)
+    assert fault_finding.Search.kills(search(True), (), failed, passed)
+    seeds = {seed for _, _, seed in drives if seed is not None}
+    assert len(seeds) == 1  # one other draw, for all three checks
+    assert cell.seed not in seeds
+    assert len(drives) == 4  # the check without the fault, then the three again
+    assert not fault_finding.Search.kills(search(False), (), failed, passed)
