@@ -228,29 +228,9 @@ class Costmap:
         self._buffer.reshape(-1)[index] = FREE
 
     def _clipped(self, laser: tuple[float, float], points: FloatArray) -> FloatArray:
-        """The points moved back along their rays onto the window where they lie beyond it, as
-        costmap_2d's raytraceFreespace does: low edges first, then high ones, a millimetre
-        inside."""
-        (origin_x, origin_y), size = laser, self.settings.cells * self.settings.resolution
-        low_x, low_y = self.origin
-        high_x, high_y = low_x + size, low_y + size
-        (least_x, least_y), (most_x, most_y) = points.min(axis=0), points.max(axis=0)
-        if least_x >= low_x and least_y >= low_y and most_x <= high_x and most_y <= high_y:
-            return points  # all on the window: a global costmap's scans mostly are
-        run_x, run_y = points[:, 0] - origin_x, points[:, 1] - origin_y
-        x, y = points[:, 0].copy(), points[:, 1].copy()
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out = x < low_x
-            y[out], x[out] = origin_y + run_y[out] * (low_x - origin_x) / run_x[out], low_x
-            out = y < low_y
-            x[out], y[out] = origin_x + run_x[out] * (low_y - origin_y) / run_y[out], low_y
-            out = x > high_x
-            y[out] = origin_y + run_y[out] * (high_x - origin_x) / run_x[out]
-            x[out] = high_x - 0.001
-            out = y > high_y
-            x[out] = origin_x + run_x[out] * (high_y - origin_y) / run_y[out]
-            y[out] = high_y - 0.001
-        return np.column_stack([x, y])
+        """The points moved back along their rays onto the window where they lie beyond it."""
+        size = self.settings.cells * self.settings.resolution
+        return clipped(laser, points, self.origin, (self.origin[0] + size, self.origin[1] + size))
 
     def _mark(self, laser: tuple[float, float], points: FloatArray) -> None:
         """Mark the cell of each point nearer the laser than `obstacle_range` lethal."""
@@ -320,6 +300,35 @@ class InflationCost:
         return costs
 
 
+def clipped(
+    laser: tuple[float, float],
+    points: FloatArray,
+    low: tuple[float, float],
+    high: tuple[float, float],
+) -> FloatArray:
+    """The points (P, 2) m moved back along their rays from `laser` onto the window from `low`
+    to `high` (m) where they lie beyond it, as costmap_2d's raytraceFreespace does: low edges
+    first, then high ones, a millimetre inside."""
+    (origin_x, origin_y), (low_x, low_y), (high_x, high_y) = laser, low, high
+    (least_x, least_y), (most_x, most_y) = points.min(axis=0), points.max(axis=0)
+    if least_x >= low_x and least_y >= low_y and most_x <= high_x and most_y <= high_y:
+        return points  # all on the window: a global costmap's scans mostly are
+    run_x, run_y = points[:, 0] - origin_x, points[:, 1] - origin_y
+    x, y = points[:, 0].copy(), points[:, 1].copy()
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = x < low_x
+        y[out], x[out] = origin_y + run_y[out] * (low_x - origin_x) / run_x[out], low_x
+        out = y < low_y
+        x[out], y[out] = origin_x + run_x[out] * (low_y - origin_y) / run_y[out], low_y
+        out = x > high_x
+        y[out] = origin_y + run_y[out] * (high_x - origin_x) / run_x[out]
+        x[out] = high_x - 0.001
+        out = y > high_y
+        x[out] = origin_x + run_x[out] * (high_y - origin_y) / run_y[out]
+        y[out] = high_y - 0.001
+    return np.column_stack([x, y])
+
+
 def ray_indices(
     start_x: int | IntArray,
     start_y: int | IntArray,
@@ -332,7 +341,28 @@ def ray_indices(
     flat indices x + y * stride into a grid `stride` cells wide, shape (M,): steps along the
     longer axis, the other stepping when its error wraps, then the last cell; at most
     `longest` cells of length (scaled along the longer axis). Each ray may start at a cell of
-    its own (K,).
+    its own (K,)."""
+    dx, dy = end_x - start_x, end_y - start_y
+    major = np.maximum(np.abs(dx), np.abs(dy))
+    steps = major
+    if longest is not None:
+        length = np.hypot(dx, dy)
+        scale = np.minimum(1.0, longest / np.where(length == 0.0, 1.0, length))
+        steps = np.minimum((scale * major).astype(np.int64), major)
+    return bresenham(start_x, start_y, end_x, end_y, steps, stride)
+
+
+def bresenham(
+    start_x: int | IntArray,
+    start_y: int | IntArray,
+    end_x: IntArray,
+    end_y: IntArray,
+    steps: IntArray,
+    stride: int,
+) -> IntArray:
+    """The cells costmap_2d's bresenham2D visits on the line from a start cell toward each end
+    cell (K,) in `steps` (K,) steps along its longer axis, and the cell it then stands on, as
+    flat indices x + y * stride, shape (M,).
 
     Every ray is stepped at once: each visited cell is the start, `step` cells along the
     ray's longer axis and `wraps` along the other, and `wraps` is Bresenham's error count.
@@ -340,11 +370,6 @@ def ray_indices(
     dx, dy = end_x - start_x, end_y - start_y
     along_x = np.abs(dx) >= np.abs(dy)
     major, minor = np.maximum(np.abs(dx), np.abs(dy)), np.minimum(np.abs(dx), np.abs(dy))
-    steps = major
-    if longest is not None:
-        length = np.hypot(dx, dy)
-        scale = np.minimum(1.0, longest / np.where(length == 0.0, 1.0, length))
-        steps = np.minimum((scale * major).astype(np.int64), major)
     unit_x, unit_y = np.where(dx > 0, 1, -1), np.where(dy > 0, stride, -stride)
     counts = steps + 1
     # int32 halves the time of the per-cell arithmetic; a window holds far fewer cells.
