@@ -88,9 +88,7 @@ def test_a_ray_frees_the_cells_to_its_end_from_raytrace_min_range_on() -> None:
     assert from_min_range.tolist() == list(range(4, 11))
 
 
-def test_a_ray_shorter_than_raytrace_min_range_frees_nothing_and_one_longer_than_its_max_stops() -> (
-    None
-):
+def test_a_ray_shorter_than_raytrace_min_range_frees_nothing_and_a_long_one_stops() -> None:
     sensor = (0.01, 0.01)
     source = ObservationSource(raytrace_min_range=0.2, raytrace_max_range=0.3)  # 4 and 6 cells
     assert len(cleared(WINDOW, sensor, np.array([[0.16, 0.01]]), source)) == 0

@@ -1,0 +1,270 @@
+"""Nav2's MPPI controller (nav2_mppi_controller), every sample at once: being built.
+
+Read in ros-navigation/navigation2 at jazzy f4108e5b: src/optimizer.cpp (evalControl,
+optimize, generateNoisedTrajectories, integrateStateVelocities, updateControlSequence,
+applyControlSequenceConstraints, shiftControlSequence), src/noise_generator.cpp,
+include/nav2_mppi_controller/motion_models.hpp (DiffDrive's predict), tools/utils.hpp
+(savitskyGolayFilter, findPathFurthestReachedPoint, findPathCosts, withinPositionGoalTolerance)
+and the critics under src/critics; the defaults are nav2_bringup/params/nav2_params.yaml's.
+Our own numpy code, in float32 as MPPI's xtensor arrays are.
+
+One cycle: the control sequence (T,) plus Gaussian noise makes batch_size noised sequences
+(B, T); the motion model bounds each step's change by the acceleration limits, from the robot's
+speed on; the sequences are integrated into trajectories (yaw first, each step moving along the
+heading of the step before); the critics add up a cost per trajectory; a softmax of the costs
+(at `temperature`, plus the control cost gamma / std^2 sum(u (noised - u))) weights the noised
+sequences into the new control sequence, which is clipped to the limits and smoothed with a
+9-point Savitzky-Golay filter over the last four commands. The command is the sequence's second
+element (shift_control_sequence), and the sequence shifts one step.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+
+F32 = npt.NDArray[np.float32]
+# Savitzky-Golay, quadratic, 9 points (utils.hpp savitskyGolayFilter).
+SAVITZKY_GOLAY = np.array([-21, 14, 39, 54, 59, 54, 39, 14, -21], dtype=np.float32) / 231.0
+
+
+@dataclass(frozen=True)
+class MppiSettings:
+    """The optimizer's parameters, with Nav2's names; defaults from Jazzy's nav2_params.yaml."""
+
+    time_steps: int = 56
+    model_dt: float = 0.05  # s
+    batch_size: int = 2000
+    iteration_count: int = 1
+    vx_std: float = 0.2  # m/s
+    wz_std: float = 0.4  # rad/s
+    vx_max: float = 0.5  # m/s
+    vx_min: float = -0.35  # m/s
+    vy_max: float = 0.5  # m/s: unused by a differential drive, but ConstraintCritic reads it
+    wz_max: float = 1.9  # rad/s
+    ax_max: float = 3.0  # m/s^2
+    ax_min: float = -3.0  # m/s^2
+    az_max: float = 3.5  # rad/s^2
+    temperature: float = 0.3
+    gamma: float = 0.015
+    retry_attempt_limit: int = 1
+
+
+@dataclass
+class CriticData:
+    """What the critics read and what they add to: one cycle's samples, shapes (B, T)."""
+
+    pose: tuple[float, float, float]  # m, m, rad
+    goal: tuple[float, float]  # m
+    path: F32  # (P, 2) m, the plan from the robot on
+    cvx: F32  # (B, T) m/s, each sample's noised controls, bounded as predict bounds them
+    cwz: F32  # (B, T) rad/s
+    vx: F32  # (B, T) m/s, each sample's speed at each step
+    wz: F32  # (B, T) rad/s
+    x: F32  # (B, T) m, each sample's trajectory
+    y: F32  # (B, T) m
+    yaw: F32  # (B, T) rad
+    model_dt: float  # s
+    costs: F32  # (B,)
+    path_valid: npt.NDArray[np.bool_] | None = None  # (P - 1,) findPathCosts; None: all
+    fail: bool = False  # a critic found no sample to take
+    furthest: int | None = field(default=None)  # the path point the samples reach furthest
+
+    def within(self, threshold: float) -> bool:
+        """withinPositionGoalTolerance: whether the robot is nearer the goal than `threshold`."""
+        distance = (self.goal[0] - self.pose[0]) ** 2 + (self.goal[1] - self.pose[1]) ** 2
+        return bool(distance < threshold**2)
+
+    def furthest_reached(self) -> int:
+        """findPathFurthestReachedPoint: trajectory by trajectory, the path point nearest its
+        end among those at or past the furthest found so far; remembered for the cycle."""
+        if self.furthest is None:
+            self.furthest = _furthest_reached(self.x[:, -1], self.y[:, -1], self.path)
+        return self.furthest
+
+
+Critic = Callable[[CriticData], None]
+
+
+def _furthest_reached(end_x: F32, end_y: F32, path: F32) -> int:
+    """The sequential scan of findPathFurthestReachedPoint over ends (B,) and a path (P, 2):
+    the furthest index moves only when a trajectory's nearest point past it lies further, so
+    each move is found at once among the trajectories still to scan."""
+    squared = (path[np.newaxis, :, 0] - end_x[:, np.newaxis]) ** 2 + (
+        path[np.newaxis, :, 1] - end_y[:, np.newaxis]
+    ) ** 2  # (B, P)
+    furthest, row = 0, 0
+    while row < len(squared):
+        # argmin keeps the first of equal distances, as Nav2's strict comparison does.
+        nearest = furthest + np.argmin(squared[row:, furthest:], axis=1)
+        ahead = np.flatnonzero(nearest > furthest)
+        if not len(ahead):
+            break
+        row += int(ahead[0])
+        furthest = int(nearest[ahead[0]])
+        row += 1
+    return furthest
+
+
+class Optimizer:
+    """MPPI's optimizer for a differential drive: one command per call of `command`."""
+
+    def __init__(
+        self, settings: MppiSettings, critics: Sequence[Critic], rng: np.random.Generator
+    ) -> None:
+        self.settings, self.critics, self.rng = settings, tuple(critics), rng
+        self.vx = np.zeros(settings.time_steps, dtype=np.float32)  # (T,) the control sequence
+        self.wz = np.zeros(settings.time_steps, dtype=np.float32)
+        self.history = np.zeros((4, 2), dtype=np.float32)  # the last four commands [vx, wz]
+        self.failures = 0  # cycles in a row that found no sample to take
+
+    def command(
+        self,
+        pose: tuple[float, float, float],
+        speed: tuple[float, float],
+        path: F32,
+        goal: tuple[float, float],
+    ) -> tuple[float, float] | None:
+        """The twist [vx, wz] (m/s, rad/s) to drive now, or None when every sample failed
+        more than retry_attempt_limit times in a row (the controller's NoValidControl); each
+        failure starts the sequence afresh, as Optimizer::fallback resets it."""
+        while not self._optimize(pose, speed, path, goal):
+            self._reset()
+            self.failures += 1
+            if self.failures > self.settings.retry_attempt_limit:
+                self.failures = 0
+                return None
+        self.failures = 0
+        self._smooth()
+        command = float(self.vx[1]), float(self.wz[1])
+        self._shift()
+        return command
+
+    def _optimize(
+        self,
+        pose: tuple[float, float, float],
+        speed: tuple[float, float],
+        path: F32,
+        goal: tuple[float, float],
+    ) -> bool:
+        """iteration_count rounds of sampling, scoring and updating; False if a critic failed."""
+        for _ in range(self.settings.iteration_count):
+            data = self._samples(pose, speed, path, goal)
+            for critic in self.critics:
+                critic(data)
+            if data.fail:
+                return False
+            self._update(data)
+        return True
+
+    def _reset(self) -> None:
+        self.vx[:], self.wz[:] = 0.0, 0.0
+        self.history[:] = 0.0
+
+    def _samples(
+        self,
+        pose: tuple[float, float, float],
+        speed: tuple[float, float],
+        path: F32,
+        goal: tuple[float, float],
+    ) -> CriticData:
+        """Noised sequences, bounded from the robot's speed on, and their trajectories."""
+        s = self.settings
+        shape = (s.batch_size, s.time_steps)
+        noised_vx = self.vx + np.float32(s.vx_std) * self.rng.standard_normal(shape, np.float32)
+        noised_wz = self.wz + np.float32(s.wz_std) * self.rng.standard_normal(shape, np.float32)
+        vx, wz = _predict(noised_vx, noised_wz, speed, s)
+        x, y, yaw = _integrate(vx, wz, pose, s.model_dt)
+        costs = np.zeros(s.batch_size, dtype=np.float32)
+        return CriticData(
+            pose, goal, path, noised_vx, noised_wz, vx, wz, x, y, yaw, s.model_dt, costs
+        )
+
+    def _update(self, data: CriticData) -> None:
+        """The softmax-weighted mean of the noised sequences becomes the sequence."""
+        s = self.settings
+        noised_vx, noised_wz, costs = data.cvx, data.cwz, data.costs
+        costs += s.gamma / s.vx_std**2 * (self.vx * (noised_vx - self.vx)).sum(axis=1)
+        costs += s.gamma / s.wz_std**2 * (self.wz * (noised_wz - self.wz)).sum(axis=1)
+        weights = np.exp(-1.0 / s.temperature * (costs - costs.min()))
+        weights /= weights.sum()
+        self.vx = (noised_vx * weights[:, np.newaxis]).sum(axis=0).astype(np.float32)
+        self.wz = (noised_wz * weights[:, np.newaxis]).sum(axis=0).astype(np.float32)
+        self._constrain()
+
+    def _constrain(self) -> None:
+        """applyControlSequenceConstraints: the limits, then each step's change bounded."""
+        s = self.settings
+        np.clip(self.vx, s.vx_min, s.vx_max, out=self.vx)
+        np.clip(self.wz, -s.wz_max, s.wz_max, out=self.wz)
+        for step in range(1, s.time_steps):
+            self.vx[step] = _bounded_vx(self.vx[step], self.vx[step - 1], s)
+            low, high = (
+                self.wz[step - 1] - s.model_dt * s.az_max,
+                self.wz[step - 1] + s.model_dt * s.az_max,
+            )
+            self.wz[step] = min(max(self.wz[step], low), high)
+
+    def _smooth(self) -> None:
+        """savitskyGolayFilter over the sequence, the last four commands before it."""
+        if self.settings.time_steps - 1 < 20:
+            return
+        for axis, sequence in enumerate((self.vx, self.wz)):
+            padded = np.concatenate([self.history[:, axis], sequence, np.repeat(sequence[-1:], 4)])
+            # Each of the first T - 1 points from its 9-point window; the last is kept.
+            windows = np.lib.stride_tricks.sliding_window_view(padded, 9)[: len(sequence) - 1]
+            sequence[:-1] = windows @ SAVITZKY_GOLAY
+        self.history = np.vstack([self.history[1:], [[self.vx[1], self.wz[1]]]])
+
+    def _shift(self) -> None:
+        """shiftControlSequence: one step on, the last step repeated."""
+        for sequence in (self.vx, self.wz):
+            sequence[:-1] = sequence[1:].copy()
+
+
+def _bounded_vx(value: float, last: float, s: MppiSettings) -> float:
+    """A speed's change from `last` bounded by the acceleration limits, as Nav2 bounds it
+    (ax_min braking when moving forward, the mirror when not)."""
+    if last > 0:
+        low, high = last + s.model_dt * s.ax_min, last + s.model_dt * s.ax_max
+    else:
+        low, high = last - s.model_dt * s.ax_max, last - s.model_dt * s.ax_min
+    return float(min(max(value, low), high))
+
+
+def _predict(
+    noised_vx: F32, noised_wz: F32, speed: tuple[float, float], s: MppiSettings
+) -> tuple[F32, F32]:
+    """DiffDrive's predict: the speed at step 0 is the robot's, and at each later step the
+    noised control of the step before, bounded by the acceleration limits (which bound the
+    noised control itself too, as Nav2's does in place)."""
+    vx = np.empty_like(noised_vx)
+    wz = np.empty_like(noised_wz)
+    vx[:, 0], wz[:, 0] = speed
+    up, down, turn = s.model_dt * s.ax_max, s.model_dt * s.ax_min, s.model_dt * s.az_max
+    for step in range(1, noised_vx.shape[1]):
+        last_vx, last_wz = vx[:, step - 1], wz[:, step - 1]
+        forward = last_vx > 0
+        low = np.where(forward, last_vx + down, last_vx - up)
+        high = np.where(forward, last_vx + up, last_vx - down)
+        noised_vx[:, step - 1] = np.clip(noised_vx[:, step - 1], low, high)
+        noised_wz[:, step - 1] = np.clip(noised_wz[:, step - 1], last_wz - turn, last_wz + turn)
+        vx[:, step], wz[:, step] = noised_vx[:, step - 1], noised_wz[:, step - 1]
+    return vx, wz
+
+
+def _integrate(
+    vx: F32, wz: F32, pose: tuple[float, float, float], dt: float
+) -> tuple[F32, F32, F32]:
+    """integrateStateVelocities: yaw the running sum of wz dt; each step moves along the yaw
+    of the step before (the start's for the first)."""
+    x0, y0, yaw0 = pose
+    yaw = (np.cumsum(wz * np.float32(dt), axis=1) + np.float32(yaw0)).astype(np.float32)
+    heading = np.empty_like(yaw)
+    heading[:, 0], heading[:, 1:] = np.float32(yaw0), yaw[:, :-1]
+    x = np.float32(x0) + np.cumsum(vx * np.cos(heading) * np.float32(dt), axis=1)
+    y = np.float32(y0) + np.cumsum(vx * np.sin(heading) * np.float32(dt), axis=1)
+    return x.astype(np.float32), y.astype(np.float32), yaw
