@@ -15,6 +15,8 @@ import numpy as np
 
 from pytest_lasertest.nav.nav2.mppi import F32, CriticData, MppiSettings
 
+INSCRIBED, LETHAL, NO_INFORMATION = 253, 254, 255
+
 
 def _powered(cost: F32, weight: float, power: int) -> F32:
     weighted: F32 = (cost * np.float32(weight)).astype(np.float32)
@@ -93,3 +95,38 @@ class PathFollowCritic:
         target_x, target_y = data.path[index]
         distance = np.hypot(data.x[:, -1] - target_x, data.y[:, -1] - target_y)
         data.costs += _powered(distance, self.weight, self.power)
+
+
+@dataclass(frozen=True)
+class CostCritic:
+    """The costmap under every `trajectory_point_step`-th point of each trajectory
+    (cost_critic.cpp, consider_footprint false): a trajectory that meets a lethal or inscribed
+    cell (or an unknown one, unknown untracked) costs collision_cost; otherwise each point
+    adds its cost, critical_cost from near_collision_cost up, and nothing near the goal but
+    that; summed, times weight / 254 over the points. When every trajectory collides the
+    cycle fails."""
+
+    weight: float = 3.81
+    power: int = 1
+    critical_cost: float = 300.0
+    near_collision_cost: int = 253
+    collision_cost: float = 1_000_000.0
+    near_goal_distance: float = 1.0  # m (Jazzy's params; the critic's own default is 0.5)
+    trajectory_point_step: int = 2
+
+    def __call__(self, data: CriticData) -> None:
+        if data.costmap is None:
+            return
+        step = self.trajectory_point_step
+        points = data.x.shape[1] // step
+        costs = data.costmap.at(data.x[:, ::step][:, :points], data.y[:, ::step][:, :points])
+        collides = (costs == LETHAL) | (costs == INSCRIBED)
+        if not data.costmap.tracking_unknown:
+            collides |= costs == NO_INFORMATION
+        collided = collides.any(axis=1)
+        ordinary = 0.0 if data.within(self.near_goal_distance) else costs
+        per_point = np.where(costs >= self.near_collision_cost, self.critical_cost, ordinary)
+        repulsive = np.where(collided, self.collision_cost, per_point.sum(axis=1))
+        scale = self.weight / 254.0 / points
+        data.costs += _powered(repulsive.astype(np.float32), scale, self.power)
+        data.fail = bool(collided.all())

@@ -53,6 +53,34 @@ class MppiSettings:
     retry_attempt_limit: int = 1
 
 
+@dataclass(frozen=True)
+class CostGrid:
+    """The local costmap as the critics read it: costs indexed [y, x], where cell (0, 0)'s lower
+    left corner lies, the cell size, and whether unknown cells are tracked."""
+
+    costs: npt.NDArray[np.uint8]  # (H, W)
+    origin: tuple[float, float]  # m
+    resolution: float  # m per cell
+    tracking_unknown: bool
+
+    def at(self, x: F32, y: F32) -> npt.NDArray[np.float32]:
+        """The costs under points (any shape) m, 255 (no information) off the grid, as the
+        CostCritic's worldToMapFloat reads them, in float32."""
+        column = (x - np.float32(self.origin[0])) / np.float32(self.resolution)
+        row = (y - np.float32(self.origin[1])) / np.float32(self.resolution)
+        height, width = self.costs.shape
+        on = (x >= np.float32(self.origin[0])) & (y >= np.float32(self.origin[1]))
+        on &= (column < width) & (row < height)
+        cells_x, cells_y = (
+            np.where(on, column, 0).astype(np.int64),
+            np.where(on, row, 0).astype(np.int64),
+        )
+        found: npt.NDArray[np.float32] = np.where(on, self.costs[cells_y, cells_x], 255).astype(
+            np.float32
+        )
+        return found
+
+
 @dataclass
 class CriticData:
     """What the critics read and what they add to: one cycle's samples, shapes (B, T)."""
@@ -69,6 +97,7 @@ class CriticData:
     yaw: F32  # (B, T) rad
     model_dt: float  # s
     costs: F32  # (B,)
+    costmap: CostGrid | None = None  # the local costmap; None: no obstacle anywhere
     path_valid: npt.NDArray[np.bool_] | None = None  # (P - 1,) findPathCosts; None: all
     fail: bool = False  # a critic found no sample to take
     furthest: int | None = field(default=None)  # the path point the samples reach furthest
@@ -127,11 +156,12 @@ class Optimizer:
         speed: tuple[float, float],
         path: F32,
         goal: tuple[float, float],
+        costmap: CostGrid | None = None,
     ) -> tuple[float, float] | None:
         """The twist [vx, wz] (m/s, rad/s) to drive now, or None when every sample failed
         more than retry_attempt_limit times in a row (the controller's NoValidControl); each
         failure starts the sequence afresh, as Optimizer::fallback resets it."""
-        while not self._optimize(pose, speed, path, goal):
+        while not self._optimize(pose, speed, path, goal, costmap):
             self._reset()
             self.failures += 1
             if self.failures > self.settings.retry_attempt_limit:
@@ -149,10 +179,11 @@ class Optimizer:
         speed: tuple[float, float],
         path: F32,
         goal: tuple[float, float],
+        costmap: CostGrid | None,
     ) -> bool:
         """iteration_count rounds of sampling, scoring and updating; False if a critic failed."""
         for _ in range(self.settings.iteration_count):
-            data = self._samples(pose, speed, path, goal)
+            data = self._samples(pose, speed, path, goal, costmap)
             for critic in self.critics:
                 critic(data)
             if data.fail:
@@ -170,6 +201,7 @@ class Optimizer:
         speed: tuple[float, float],
         path: F32,
         goal: tuple[float, float],
+        costmap: CostGrid | None,
     ) -> CriticData:
         """Noised sequences, bounded from the robot's speed on, and their trajectories."""
         s = self.settings
@@ -180,7 +212,7 @@ class Optimizer:
         x, y, yaw = _integrate(vx, wz, pose, s.model_dt)
         costs = np.zeros(s.batch_size, dtype=np.float32)
         return CriticData(
-            pose, goal, path, noised_vx, noised_wz, vx, wz, x, y, yaw, s.model_dt, costs
+            pose, goal, path, noised_vx, noised_wz, vx, wz, x, y, yaw, s.model_dt, costs, costmap
         )
 
     def _update(self, data: CriticData) -> None:

@@ -3,15 +3,24 @@ seed, near the goal the goal pulls, and when every sample fails it says so."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from pytest_lasertest.nav.nav2.critics import (
     ConstraintCritic,
+    CostCritic,
     GoalCritic,
     PathFollowCritic,
     PreferForwardCritic,
 )
-from pytest_lasertest.nav.nav2.mppi import CriticData, MppiSettings, Optimizer, _furthest_reached
+from pytest_lasertest.nav.nav2.mppi import (
+    CostGrid,
+    CriticData,
+    MppiSettings,
+    Optimizer,
+    _furthest_reached,
+)
 
 SETTINGS = MppiSettings()
 PATH = np.column_stack([np.arange(0.0, 5.0, 0.05), np.zeros(100)]).astype(np.float32)
@@ -72,3 +81,44 @@ def test_the_furthest_reached_point_is_the_sequential_scan_of_nav2() -> None:
             squared = (path[furthest:, 0] - x) ** 2 + (path[furthest:, 1] - y) ** 2
             furthest = max(furthest, furthest + int(np.argmin(squared)))
         assert _furthest_reached(ends[:, 0], ends[:, 1], path) == furthest
+
+
+def wall_ahead(x_from: float) -> CostGrid:
+    """A local costmap 4 m square around the start: lethal from `x_from` m on, inscribed 0.3 m
+    before it, and an inflation gradient 0.5 m before that."""
+    resolution, cells = 0.05, 80
+    centres = (np.arange(cells) + 0.5) * resolution - 2.0
+    before = x_from - centres  # m from each column to the wall
+    column = np.where(
+        before <= 0.0,
+        254,
+        np.where(
+            before <= 0.3, 253, np.where(before <= 0.8, 252 * np.exp(-3.0 * (before - 0.3)), 0)
+        ),
+    )
+    costs = np.tile(column.astype(np.uint8), (cells, 1))
+    return CostGrid(costs, (-2.0, -2.0), resolution, tracking_unknown=False)
+
+
+def test_the_cost_critic_stops_the_robot_short_of_a_wall_across_its_plan() -> None:
+    critics = [ConstraintCritic(SETTINGS), PreferForwardCritic(), PathFollowCritic(), CostCritic()]
+    mppi = Optimizer(SETTINGS, critics, np.random.default_rng(5))
+    pose, speed, grid = (0.0, 0.0, 0.0), (0.0, 0.0), wall_ahead(1.2)
+    furthest = 0.0
+    for _ in range(80):  # 4 s, the robot moved as commanded
+        command = mppi.command(pose, speed, PATH, (4.95, 0.0), grid)
+        assert command is not None
+        speed = command
+        pose = (
+            pose[0] + command[0] * math.cos(pose[2]) * SETTINGS.model_dt,
+            pose[1] + command[0] * math.sin(pose[2]) * SETTINGS.model_dt,
+            pose[2] + command[1] * SETTINGS.model_dt,
+        )
+        furthest = max(furthest, pose[0])
+    assert 0.2 < furthest < 0.9  # m: it set off, and stayed out of the inscribed band
+
+
+def test_a_robot_whose_every_trajectory_collides_gets_no_command() -> None:
+    mppi = Optimizer(SETTINGS, [CostCritic()], np.random.default_rng(0))
+    in_the_wall = wall_ahead(-1.0)
+    assert mppi.command((0.0, 0.0, 0.0), (0.0, 0.0), PATH, (4.95, 0.0), in_the_wall) is None
