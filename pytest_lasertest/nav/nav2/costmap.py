@@ -1,0 +1,51 @@
+"""A Nav2 costmap: the rolling window of move_base's costmap_2d (nav2_costmap_2d is its port)
+with Nav2's obstacle layer for the laser (`obstacle_layer.py`): marking by release, clearing
+from raytrace_min_range to raytrace_max_range. The inflation layer's cost is the same function
+(nav2_costmap_2d/plugins/inflation_layer.cpp computeCost at jazzy f4108e5b).
+"""
+
+from __future__ import annotations
+
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.nav.move_base.costmap import FREE, LETHAL, Costmap, CostmapSettings
+from pytest_lasertest.nav.nav2.mppi import CostGrid
+from pytest_lasertest.nav.nav2.obstacle_layer import (
+    Marking,
+    ObservationSource,
+    Window,
+    cleared,
+    marked,
+)
+
+
+class Nav2Costmap(Costmap):
+    """A rolling costmap whose laser source marks and clears as Nav2's ObstacleLayer does."""
+
+    def __init__(
+        self,
+        settings: CostmapSettings,
+        footprint: FloatArray,
+        source: ObservationSource,
+        marking: Marking,
+    ) -> None:
+        super().__init__(settings, footprint)
+        self.source, self.marking = source, marking
+
+    def cost_grid(self) -> CostGrid:
+        """The inflated costs as MPPI's critics read them."""
+        resolution = self.settings.resolution
+        return CostGrid(self.costs(), self.origin, resolution, self.settings.track_unknown_space)
+
+    def _geometry(self) -> Window:
+        cells = self.settings.cells
+        return Window(self.origin[0], self.origin[1], self.settings.resolution, cells, cells)
+
+    def _clear(self, laser: tuple[float, float], points: FloatArray) -> None:
+        freed = cleared(self._geometry(), laser, points, self.source)
+        cells = self.settings.cells
+        self.grid[freed // cells, freed % cells] = FREE
+
+    def _mark(self, laser: tuple[float, float], points: FloatArray) -> None:
+        lethal = marked(self._geometry(), laser, points, self.source, self.marking)
+        cells = self.settings.cells
+        self.grid[lethal // cells, lethal % cells] = LETHAL

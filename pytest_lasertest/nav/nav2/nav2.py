@@ -1,0 +1,215 @@
+"""Nav2 as Jazzy's nav2_bringup runs it, without its behaviour tree's recoveries yet: being built.
+
+Scan by scan it does what Nav2's servers do on their clocks (nav2_params.yaml at jazzy
+f4108e5b):
+
+- the local costmap (a 3 m rolling window, 5 Hz) and the global costmap (1 Hz, unknown space
+  tracked) take the latest scan through Nav2's obstacle layer;
+- every second the behaviour tree's ComputePathToPose plans again with NavFn (tolerance 0.5 m,
+  unknown space allowed);
+- the controller server (20 Hz) runs MPPI on the plan pruned as MPPI's PathHandler prunes it
+  (from the point nearest the robot, up to prune_distance 1.7 m along), with the critics built
+  so far; the goal checker stops at 0.25 m of each goal in turn; the progress checker fails the
+  run when the robot has not moved 0.5 m in 10 s, and MPPI fails it when every sample
+  collides twice in a row. Either failure, which the behaviour tree would answer with its
+  recoveries, stands the robot still.
+
+Where this differs on purpose: without a map, the global costmap is a window over the route
+(as move_base's here), not the map's extent.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from pytest_lasertest.model.geometry import FloatArray, Point2D
+from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.nav.move_base.costmap import CostmapSettings
+from pytest_lasertest.nav.move_base.navfn import NavfnSettings, plan_path
+from pytest_lasertest.nav.nav2.costmap import Nav2Costmap
+from pytest_lasertest.nav.nav2.critics import (
+    ConstraintCritic,
+    CostCritic,
+    GoalCritic,
+    PathFollowCritic,
+    PreferForwardCritic,
+)
+from pytest_lasertest.nav.nav2.mppi import F32, Critic, MppiSettings, Optimizer
+from pytest_lasertest.nav.nav2.obstacle_layer import Marking, ObservationSource
+from pytest_lasertest.nav.protocol import LaserScan, Odometry
+
+Pose = tuple[float, float, float]  # m, m, rad
+
+
+@dataclass(frozen=True)
+class Nav2Settings:
+    """Nav2's parameters as Jazzy's nav2_params.yaml sets them."""
+
+    mppi: MppiSettings = field(default_factory=MppiSettings)
+    local_costmap: CostmapSettings = field(
+        default_factory=lambda: CostmapSettings(
+            size=3.0, inflation_radius=0.70, cost_scaling_factor=3.0, update_frequency=5.0
+        )
+    )
+    global_costmap: CostmapSettings = field(
+        default_factory=lambda: CostmapSettings(
+            size=100.0,
+            inflation_radius=0.70,
+            cost_scaling_factor=3.0,
+            update_frequency=1.0,
+            track_unknown_space=True,
+        )
+    )
+    source: ObservationSource = field(default_factory=ObservationSource)
+    marking: Marking = Marking.CELLS_PREFILTERED  # jazzy from 1.3.12
+    navfn: NavfnSettings = field(
+        default_factory=lambda: NavfnSettings(allow_unknown=True, default_tolerance=0.5)
+    )
+    controller_frequency: float = 20.0  # Hz
+    replan_period: float = 1.0  # s, the behaviour tree's RateController
+    prune_distance: float = 1.7  # m
+    xy_goal_tolerance: float = 0.25  # m
+    required_movement_radius: float = 0.5  # m
+    movement_time_allowance: float = 10.0  # s
+
+
+class Nav2:
+    """Nav2 driving one robot along a route of goals."""
+
+    def __init__(
+        self,
+        robot: Robot,
+        route: tuple[Point2D, ...],
+        settings: Nav2Settings | None = None,
+        seed: int = 0,
+    ) -> None:
+        self.settings = settings or Nav2Settings()
+        self.route, self.goal_index = route, 0
+        self.footprint = robot.footprint_array()  # (V, 2) m
+        s = self.settings
+        critics: list[Critic] = [
+            ConstraintCritic(s.mppi),
+            CostCritic(),
+            GoalCritic(),
+            PreferForwardCritic(),
+            PathFollowCritic(),
+        ]
+        self.mppi = Optimizer(s.mppi, critics, np.random.default_rng(seed))
+        self.local = Nav2Costmap(s.local_costmap, self.footprint, s.source, s.marking)
+        self._global: Nav2Costmap | None = None  # made at the first scan, around the route
+        self.plan: FloatArray = np.zeros((0, 2))  # m
+        self.failed: str | None = None  # why the navigation stopped, if it did
+        self._command = (0.0, 0.0)
+        self._next = {
+            "local": -math.inf,
+            "global": -math.inf,
+            "plan": -math.inf,
+            "cycle": -math.inf,
+        }
+        self._progress: tuple[float, float, float] | None = None  # x, y (m) and time (s)
+
+    def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
+        """The command of the latest controller cycle; each server on its own clock."""
+        pose = (odometry.x, odometry.y, odometry.yaw)
+        s = self.settings
+        if self._global is None:
+            self._global = self._global_costmap(pose)
+        if self._due("local", time, 1.0 / s.local_costmap.update_frequency):
+            self.local.update(scan, pose)
+        if self._due("global", time, 1.0 / s.global_costmap.update_frequency):
+            self.global_costmap.update(scan, pose)
+        if self._done():
+            return 0.0, 0.0
+        if self._due("plan", time, s.replan_period):
+            self._replan(pose)
+        if self._due("cycle", time, 1.0 / s.controller_frequency):
+            self._command = self._cycle(pose, (odometry.linear, odometry.angular), time)
+        return self._command
+
+    @property
+    def global_costmap(self) -> Nav2Costmap:
+        """The global costmap, once the first scan has made it."""
+        if self._global is None:
+            raise RuntimeError("Nav2 has no global costmap before its first scan")
+        return self._global
+
+    def _global_costmap(self, pose: Pose) -> Nav2Costmap:
+        """A window wide enough for every cell a run along the route can mark, clear or plan
+        through, centred where the robot starts (it rolls with the robot)."""
+        s = self.settings
+        points = np.array([pose[:2], *((point.x, point.y) for point in self.route)])
+        span = float(np.hypot(*(points[:, np.newaxis] - points[np.newaxis]).T).max())  # m
+        reach = s.source.raytrace_max_range + s.global_costmap.inflation_radius + 1.0  # m
+        size = min(s.global_costmap.size, 2.0 * (span + reach))
+        settings = dataclasses.replace(s.global_costmap, size=size)
+        return Nav2Costmap(settings, self.footprint, s.source, s.marking)
+
+    def _due(self, clock: str, time: float, period: float) -> bool:
+        if time < self._next[clock]:
+            return False
+        self._next[clock] = time + period
+        return True
+
+    def _done(self) -> bool:
+        return self.failed is not None or self.goal_index >= len(self.route)
+
+    def _cycle(self, pose: Pose, speed: tuple[float, float], time: float) -> tuple[float, float]:
+        """One controller-server cycle: the goal checker, the progress checker, then MPPI."""
+        goal = self.route[self.goal_index]
+        if math.hypot(goal.x - pose[0], goal.y - pose[1]) <= self.settings.xy_goal_tolerance:
+            self.goal_index += 1
+            self._next["plan"] = -math.inf
+            return 0.0, 0.0
+        if not self._progressing(pose, time):
+            self.failed = "progress checker: no 0.5 m of movement in 10 s"
+            return 0.0, 0.0
+        if not len(self.plan):
+            return 0.0, 0.0
+        path = self._pruned(pose)
+        command = self.mppi.command(pose, speed, path, (goal.x, goal.y), self.local.cost_grid())
+        if command is None:
+            self.failed = "MPPI: every trajectory collides"
+            return 0.0, 0.0
+        return command
+
+    def _progressing(self, pose: Pose, time: float) -> bool:
+        """SimpleProgressChecker: moved required_movement_radius within the allowance."""
+        s = self.settings
+        if (
+            self._progress is None
+            or math.hypot(pose[0] - self._progress[0], pose[1] - self._progress[1])
+            > s.required_movement_radius
+        ):
+            self._progress = (pose[0], pose[1], time)
+            return True
+        return time - self._progress[2] <= s.movement_time_allowance
+
+    def _replan(self, pose: Pose) -> None:
+        """NavFn's plan from the robot to the goal on the global costmap; the old one kept if
+        none is found."""
+        goal = self.route[self.goal_index]
+        costmap = self.global_costmap
+        ends = np.array([[pose[0], pose[1]], [goal.x, goal.y]])
+        x, y, inside = costmap.cell_of(ends)
+        if not inside.all():
+            return
+        start, end = (int(x[0]), int(y[0])), (int(x[1]), int(y[1]))
+        cells = plan_path(
+            costmap.costs(), start, end, self.settings.navfn, costmap.settings.resolution
+        )
+        if cells is not None:
+            points = costmap.centres(cells[:, 0], cells[:, 1])
+            self.plan = np.vstack([points, [[goal.x, goal.y]]])
+
+    def _pruned(self, pose: Pose) -> F32:
+        """The plan from its point nearest the robot, up to prune_distance along it."""
+        away = np.hypot(self.plan[:, 0] - pose[0], self.plan[:, 1] - pose[1])
+        path = self.plan[int(np.argmin(away)) :]
+        steps = np.hypot(*np.diff(path, axis=0).T)
+        along = np.concatenate([[0.0], np.cumsum(steps)])
+        kept: F32 = path[along <= self.settings.prune_distance].astype(np.float32)
+        return kept

@@ -1,0 +1,53 @@
+"""Nav2, as far as it is built: the Husky drives its route round an obstacle to the goal, and a
+robot that does not move for the progress checker's allowance stops."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pytest_lasertest.model.geometry import Point2D, Pose2D
+from pytest_lasertest.model.obstacles import Cylinder
+from pytest_lasertest.nav.nav2.nav2 import Nav2
+from pytest_lasertest.nav.protocol import LaserScan, Odometry
+from pytest_lasertest.pairsfile import load_pairs_file
+from pytest_lasertest.sim.oracles import Rules
+from pytest_lasertest.sim.scenario import Scenario, run_scenario
+from tests.helpers import EXAMPLES
+
+PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+SCANNER = next(pair for pair in PAPER.pairs if pair.name == "distance").baseline.profile
+TURN = (Point2D(4.0, 0.0), Point2D(4.0, 4.0))
+
+
+def test_the_husky_drives_round_a_pole_on_its_route_to_the_goal() -> None:
+    pole = Cylinder(2.0, 0.1, 0.2, 1.0)
+    # The goal checker's 0.25 m is what the oracle allows too.
+    scenario = Scenario(
+        PAPER.robot,
+        SCANNER,
+        (pole,),
+        Pose2D(0.0, 0.0, 0.0),
+        TURN,
+        45.0,
+        seed=0,
+        rules=Rules(goal_tolerance=0.25),
+    )
+    run = run_scenario(scenario, Nav2)
+    assert run.passed, run.verdicts.failures()
+    assert run.verdicts.collision.clearance > 0.05  # m
+
+
+def test_a_robot_that_has_not_moved_half_a_metre_in_ten_seconds_fails_the_progress_checker() -> (
+    None
+):
+    nav2 = Nav2(PAPER.robot, TURN)
+    meta = SCANNER.to_laserscan_meta()
+    standing = Odometry(0.0, 0.0, 0.0, 0.0, 0.0)
+    time = 0.0
+    while time <= 10.1 and nav2.failed is None:
+        scan = LaserScan(time, np.full(SCANNER.beam_count, np.inf), meta, SCANNER.pose)
+        nav2.observe(scan, standing, time)
+        time += 0.05
+    assert nav2.failed is not None
+    assert "progress checker" in nav2.failed
+    assert time > 10.0
