@@ -28,8 +28,10 @@ import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, Point2D
 from pytest_lasertest.model.robot import Robot
-from pytest_lasertest.nav.move_base.costmap import CostmapSettings
+from pytest_lasertest.model.route import place
+from pytest_lasertest.nav.move_base.costmap import LETHAL, CostmapSettings
 from pytest_lasertest.nav.move_base.navfn import NavfnSettings, plan_path
+from pytest_lasertest.nav.nav2.behaviors import CYCLE_PERIOD, BackUp, Spin, Wait
 from pytest_lasertest.nav.nav2.costmap import Nav2Costmap
 from pytest_lasertest.nav.nav2.critics import (
     ConstraintCritic,
@@ -43,6 +45,8 @@ from pytest_lasertest.nav.nav2.obstacle_layer import Marking, ObservationSource
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 
 Pose = tuple[float, float, float]  # m, m, rad
+# The default tree's RoundRobin of recoveries (navigate_to_pose_w_replanning_and_recovery.xml).
+RECOVERIES = ("ClearingActions", "Spin", "Wait", "BackUp")
 
 
 @dataclass(frozen=True)
@@ -75,6 +79,7 @@ class Nav2Settings:
     xy_goal_tolerance: float = 0.25  # m
     required_movement_radius: float = 0.5  # m
     movement_time_allowance: float = 10.0  # s
+    number_of_retries: int = 6  # the tree's NavigateRecovery
 
 
 class Nav2:
@@ -104,18 +109,21 @@ class Nav2:
         self.plan: FloatArray = np.zeros((0, 2))  # m
         self.failed: str | None = None  # why the navigation stopped, if it did
         self._command = (0.0, 0.0)
-        self._next = {
-            "local": -math.inf,
-            "global": -math.inf,
-            "plan": -math.inf,
-            "cycle": -math.inf,
-        }
+        self._next = dict.fromkeys(("local", "global", "plan", "cycle", "behavior"), -math.inf)
         self._progress: tuple[float, float, float] | None = None  # x, y (m) and time (s)
+        self.recovered: list[tuple[str, float]] = []  # (name, s): each recovery begun
+        self._behavior: Spin | BackUp | Wait | None = None
+        self._robin = 0  # the round robin's next action
+        self._retries = 0  # the tree's RecoveryNode retries used
+        self._tried = 0  # actions of the round robin failed in a row
+        self._follow_retried = False  # FollowPath's RecoveryNode retry used
+        self._now = 0.0  # s
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
-        """The command of the latest controller cycle; each server on its own clock."""
+        """The command of the latest cycle; each server on its own clock, the behaviour tree
+        choosing what runs."""
         pose = (odometry.x, odometry.y, odometry.yaw)
-        s = self.settings
+        s, self._now = self.settings, time
         if self._global is None:
             self._global = self._global_costmap(pose)
         if self._due("local", time, 1.0 / s.local_costmap.update_frequency):
@@ -124,11 +132,104 @@ class Nav2:
             self.global_costmap.update(scan, pose)
         if self._done():
             return 0.0, 0.0
-        if self._due("plan", time, s.replan_period):
-            self._replan(pose)
+        if self._behavior is not None:
+            return self._recover(pose, time)
+        if self._due("plan", time, s.replan_period) and not self._plan_with_recovery(pose):
+            return self._navigation_failed(pose, time)
         if self._due("cycle", time, 1.0 / s.controller_frequency):
-            self._command = self._cycle(pose, (odometry.linear, odometry.angular), time)
+            command = self._cycle(pose, (odometry.linear, odometry.angular), time)
+            if command is None:
+                return self._follow_failed(pose, time)
+            self._command = command
         return self._command
+
+    def _plan_with_recovery(self, pose: Pose) -> bool:
+        """ComputePathToPose in its RecoveryNode: once more after clearing the global
+        costmap entirely."""
+        if self._replan(pose):
+            return True
+        self.global_costmap.clear_outside(pose[0], pose[1], 0.0)
+        self.recovered.append(("ClearGlobalCostmap-Context", self._now))
+        return self._replan(pose)
+
+    def _follow_failed(self, pose: Pose, time: float) -> tuple[float, float]:
+        """FollowPath in its RecoveryNode: once more after clearing the local costmap."""
+        if self._follow_retried:
+            return self._navigation_failed(pose, time)
+        self._follow_retried = True
+        self.local.clear_outside(pose[0], pose[1], 0.0)
+        self.recovered.append(("ClearLocalCostmap-Context", time))
+        self._progress = None
+        self._command = (0.0, 0.0)
+        return self._command
+
+    def _navigation_failed(self, pose: Pose, time: float) -> tuple[float, float]:
+        """The tree's RecoveryNode: the round robin's next recovery, or, after
+        number_of_retries of them, the navigation fails."""
+        self._command = (0.0, 0.0)
+        if self._retries >= self.settings.number_of_retries:
+            self.failed = f"navigation failed after {self._retries} recoveries"
+            return self._command
+        self._retries += 1
+        self._tried = 0
+        self._begin_recovery(pose, time)
+        return self._recover(pose, time) if self._behavior is not None else self._command
+
+    def _begin_recovery(self, pose: Pose, time: float) -> None:
+        """Start the round robin's current action; clearing both costmaps ends at once."""
+        name = RECOVERIES[self._robin]
+        self.recovered.append((name, time))
+        if name == "ClearingActions":
+            self.local.clear_outside(pose[0], pose[1], 0.0)
+            self.global_costmap.clear_outside(pose[0], pose[1], 0.0)
+            self._recovered()
+        elif name == "Spin":
+            self._behavior = Spin(1.57, self._collides)
+        elif name == "Wait":
+            self._behavior = Wait(5.0)
+        else:
+            self._behavior = BackUp(0.30, 0.15, self._collides)
+
+    def _recover(self, pose: Pose, time: float) -> tuple[float, float]:
+        """Step the running behaviour at the behaviour server's 10 Hz; when it ends, on to
+        navigating again, or on failure to the round robin's next action (all failing fails
+        the navigation)."""
+        assert self._behavior is not None
+        if not self._due("behavior", time, CYCLE_PERIOD):
+            return self._command
+        command = self._behavior.step(pose, time)
+        if command is not None:
+            self._command = command
+            return command
+        failed, self._behavior = self._behavior.failed, None
+        self._command = (0.0, 0.0)
+        if not failed:
+            self._recovered()
+            return self._command
+        self._robin = (self._robin + 1) % len(RECOVERIES)
+        self._tried += 1
+        if self._tried == len(RECOVERIES):
+            self.failed = "every recovery failed"
+            return self._command
+        self._begin_recovery(pose, time)
+        return self._recover(pose, time) if self._behavior is not None else self._command
+
+    def _recovered(self) -> None:
+        """A recovery succeeded: the round robin moves on; navigation starts afresh."""
+        self._robin = (self._robin + 1) % len(RECOVERIES)
+        self._follow_retried = False
+        self._progress = None
+        self._next["plan"] = self._next["cycle"] = -math.inf
+
+    def _collides(self, pose: Pose) -> bool:
+        """Whether the footprint's outline at `pose` meets a lethal cell of the local costmap
+        (the behaviours' collision checker reads the outline)."""
+        outline = place(self.footprint, np.array(pose))
+        ends = np.roll(outline, -1, axis=0)
+        steps = np.linspace(0.0, 1.0, 8)[:, np.newaxis, np.newaxis]  # along each edge
+        points = (outline + steps * (ends - outline)).reshape(-1, 2)
+        x, y, inside = self.local.cell_of(points)
+        return bool((self.local.grid[y[inside], x[inside]] == LETHAL).any())
 
     @property
     def global_costmap(self) -> Nav2Costmap:
@@ -157,7 +258,9 @@ class Nav2:
     def _done(self) -> bool:
         return self.failed is not None or self.goal_index >= len(self.route)
 
-    def _cycle(self, pose: Pose, speed: tuple[float, float], time: float) -> tuple[float, float]:
+    def _cycle(
+        self, pose: Pose, speed: tuple[float, float], time: float
+    ) -> tuple[float, float] | None:
         """One controller-server cycle: the goal checker, the progress checker, then MPPI."""
         goal = self.route[self.goal_index]
         if math.hypot(goal.x - pose[0], goal.y - pose[1]) <= self.settings.xy_goal_tolerance:
@@ -165,16 +268,12 @@ class Nav2:
             self._next["plan"] = -math.inf
             return 0.0, 0.0
         if not self._progressing(pose, time):
-            self.failed = "progress checker: no 0.5 m of movement in 10 s"
-            return 0.0, 0.0
+            return None  # FAILED_TO_MAKE_PROGRESS
         if not len(self.plan):
             return 0.0, 0.0
         path = self._pruned(pose)
-        command = self.mppi.command(pose, speed, path, (goal.x, goal.y), self.local.cost_grid())
-        if command is None:
-            self.failed = "MPPI: every trajectory collides"
-            return 0.0, 0.0
-        return command
+        # None: NO_VALID_CONTROL, every sample colliding.
+        return self.mppi.command(pose, speed, path, (goal.x, goal.y), self.local.cost_grid())
 
     def _progressing(self, pose: Pose, time: float) -> bool:
         """SimpleProgressChecker: moved required_movement_radius within the allowance."""
@@ -188,22 +287,24 @@ class Nav2:
             return True
         return time - self._progress[2] <= s.movement_time_allowance
 
-    def _replan(self, pose: Pose) -> None:
-        """NavFn's plan from the robot to the goal on the global costmap; the old one kept if
-        none is found."""
+    def _replan(self, pose: Pose) -> bool:
+        """NavFn's plan from the robot to the goal on the global costmap; False, the old one
+        kept, if none is found."""
         goal = self.route[self.goal_index]
         costmap = self.global_costmap
         ends = np.array([[pose[0], pose[1]], [goal.x, goal.y]])
         x, y, inside = costmap.cell_of(ends)
         if not inside.all():
-            return
+            return False
         start, end = (int(x[0]), int(y[0])), (int(x[1]), int(y[1]))
         cells = plan_path(
             costmap.costs(), start, end, self.settings.navfn, costmap.settings.resolution
         )
-        if cells is not None:
-            points = costmap.centres(cells[:, 0], cells[:, 1])
-            self.plan = np.vstack([points, [[goal.x, goal.y]]])
+        if cells is None:
+            return False
+        points = costmap.centres(cells[:, 0], cells[:, 1])
+        self.plan = np.vstack([points, [[goal.x, goal.y]]])
+        return True
 
     def _pruned(self, pose: Pose) -> F32:
         """The plan from its point nearest the robot, up to prune_distance along it."""
