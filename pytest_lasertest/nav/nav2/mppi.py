@@ -205,14 +205,29 @@ class Optimizer:
     ) -> CriticData:
         """Noised sequences, bounded from the robot's speed on, and their trajectories."""
         s = self.settings
-        shape = (s.batch_size, s.time_steps)
-        noised_vx = self.vx + np.float32(s.vx_std) * self.rng.standard_normal(shape, np.float32)
-        noised_wz = self.wz + np.float32(s.wz_std) * self.rng.standard_normal(shape, np.float32)
+        # Time-major (T, B) inside, so that each step's samples lie together; the critics
+        # read (B, T) views of them.
+        shape = (s.time_steps, s.batch_size)
+        noise = self.rng.standard_normal((2, *shape), np.float32)
+        noised_vx = self.vx[:, np.newaxis] + np.float32(s.vx_std) * noise[0]
+        noised_wz = self.wz[:, np.newaxis] + np.float32(s.wz_std) * noise[1]
         vx, wz = _predict(noised_vx, noised_wz, speed, s)
         x, y, yaw = _integrate(vx, wz, pose, s.model_dt)
         costs = np.zeros(s.batch_size, dtype=np.float32)
         return CriticData(
-            pose, goal, path, noised_vx, noised_wz, vx, wz, x, y, yaw, s.model_dt, costs, costmap
+            pose,
+            goal,
+            path,
+            noised_vx.T,
+            noised_wz.T,
+            vx.T,
+            wz.T,
+            x.T,
+            y.T,
+            yaw.T,
+            s.model_dt,
+            costs,
+            costmap,
         )
 
     def _update(self, data: CriticData) -> None:
@@ -270,33 +285,46 @@ def _bounded_vx(value: float, last: float, s: MppiSettings) -> float:
 def _predict(
     noised_vx: F32, noised_wz: F32, speed: tuple[float, float], s: MppiSettings
 ) -> tuple[F32, F32]:
-    """DiffDrive's predict: the speed at step 0 is the robot's, and at each later step the
-    noised control of the step before, bounded by the acceleration limits (which bound the
-    noised control itself too, as Nav2's does in place)."""
+    """DiffDrive's predict over time-major (T, B) controls: the speed at step 0 is the
+    robot's, and at each later step the noised control of the step before, bounded by the
+    acceleration limits (which bound the noised control itself too, as Nav2's does in place)."""
     vx = np.empty_like(noised_vx)
     wz = np.empty_like(noised_wz)
-    vx[:, 0], wz[:, 0] = speed
-    up, down, turn = s.model_dt * s.ax_max, s.model_dt * s.ax_min, s.model_dt * s.az_max
-    for step in range(1, noised_vx.shape[1]):
-        last_vx, last_wz = vx[:, step - 1], wz[:, step - 1]
+    vx[0], wz[0] = speed
+    up, down = np.float32(s.model_dt * s.ax_max), np.float32(s.model_dt * s.ax_min)
+    turn = np.float32(s.model_dt * s.az_max)
+    for step in range(1, len(noised_vx)):
+        last_vx, last_wz = vx[step - 1], wz[step - 1]
         forward = last_vx > 0
-        low = np.where(forward, last_vx + down, last_vx - up)
-        high = np.where(forward, last_vx + up, last_vx - down)
-        noised_vx[:, step - 1] = np.clip(noised_vx[:, step - 1], low, high)
-        noised_wz[:, step - 1] = np.clip(noised_wz[:, step - 1], last_wz - turn, last_wz + turn)
-        vx[:, step], wz[:, step] = noised_vx[:, step - 1], noised_wz[:, step - 1]
+        low = last_vx + np.where(forward, down, -up)
+        high = last_vx + np.where(forward, up, -down)
+        np.clip(noised_vx[step - 1], low, high, out=noised_vx[step - 1])
+        np.clip(noised_wz[step - 1], last_wz - turn, last_wz + turn, out=noised_wz[step - 1])
+        vx[step], wz[step] = noised_vx[step - 1], noised_wz[step - 1]
     return vx, wz
 
 
 def _integrate(
     vx: F32, wz: F32, pose: tuple[float, float, float], dt: float
 ) -> tuple[F32, F32, F32]:
-    """integrateStateVelocities: yaw the running sum of wz dt; each step moves along the yaw
-    of the step before (the start's for the first)."""
+    """integrateStateVelocities over time-major (T, B) speeds: yaw the running sum of wz dt;
+    each step moves along the yaw of the step before (the start's for the first)."""
     x0, y0, yaw0 = pose
-    yaw = (np.cumsum(wz * np.float32(dt), axis=1) + np.float32(yaw0)).astype(np.float32)
+    step = np.float32(dt)
+    yaw = _running_sum(wz * step, np.float32(yaw0))
     heading = np.empty_like(yaw)
-    heading[:, 0], heading[:, 1:] = np.float32(yaw0), yaw[:, :-1]
-    x = np.float32(x0) + np.cumsum(vx * np.cos(heading) * np.float32(dt), axis=1)
-    y = np.float32(y0) + np.cumsum(vx * np.sin(heading) * np.float32(dt), axis=1)
-    return x.astype(np.float32), y.astype(np.float32), yaw
+    heading[0], heading[1:] = np.float32(yaw0), yaw[:-1]
+    moved = vx * step
+    x = _running_sum(moved * np.cos(heading), np.float32(x0))
+    y = _running_sum(moved * np.sin(heading), np.float32(y0))
+    return x, y, yaw
+
+
+def _running_sum(steps: F32, start: np.float32) -> F32:
+    """`start` plus the running sum of time-major `steps` (T, B) along time: a step at a
+    time over whole rows, which numpy's cumsum along this axis is several times slower at."""
+    total = np.empty_like(steps)
+    np.add(steps[0], start, out=total[0])
+    for row in range(1, len(steps)):
+        np.add(total[row - 1], steps[row], out=total[row])
+    return total
