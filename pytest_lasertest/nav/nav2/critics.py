@@ -12,7 +12,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
+from pytest_lasertest.model.geometry import IntArray
 from pytest_lasertest.nav.nav2.mppi import F32, CriticData, MppiSettings
 
 INSCRIBED, LETHAL, NO_INFORMATION = 253, 254, 255
@@ -89,8 +91,8 @@ class PathFollowCritic:
         if len(data.path) < 2 or data.within(self.threshold_to_consider):
             return
         index = min(data.furthest_reached() + self.offset_from_furthest, last)
-        valid = data.path_valid
-        while valid is not None and index < last - 1 and not valid[index]:
+        valid = data.path_points_valid()
+        while index < last - 1 and not valid[index]:
             index += 1
         target_x, target_y = data.path[index]
         distance = np.hypot(data.x[:, -1] - target_x, data.y[:, -1] - target_y)
@@ -130,3 +132,101 @@ class CostCritic:
         scale = self.weight / 254.0 / points
         data.costs += _powered(repulsive.astype(np.float32), scale, self.power)
         data.fail = bool(collided.all())
+
+
+def _angle_between(a: F32 | float, b: F32 | float) -> F32:
+    """|shortest_angular_distance(a, b)|: how far apart two headings are, 0..pi (rad)."""
+    difference = np.asarray(b, dtype=np.float32) - np.asarray(a, dtype=np.float32)
+    wrapped: F32 = np.abs(np.arctan2(np.sin(difference), np.cos(difference))).astype(np.float32)
+    return wrapped
+
+
+@dataclass(frozen=True)
+class PathAngleCritic:
+    """Away from the goal, when the path point `offset_from_furthest` past the furthest the
+    samples reach lies more than max_angle_to_furthest off the robot's heading: each
+    trajectory's final heading against the bearing from its end to that point
+    (path_angle_critic.cpp; modes 0, forward preferred, and 1, either way)."""
+
+    weight: float = 2.0
+    power: int = 1
+    threshold_to_consider: float = 0.5  # m
+    offset_from_furthest: int = 4
+    max_angle_to_furthest: float = 1.0  # rad
+    mode: int = 0  # 0: FORWARD_PREFERENCE; 1: NO_DIRECTIONAL_PREFERENCE
+
+    def __post_init__(self) -> None:
+        if self.mode not in (0, 1):
+            raise ValueError(f"PathAngleCritic mode {self.mode}: only modes 0 and 1 are imitated")
+
+    def __call__(self, data: CriticData) -> None:
+        if data.within(self.threshold_to_consider):
+            return
+        index = min(data.furthest_reached() + self.offset_from_furthest, len(data.path) - 1)
+        target_x, target_y = (float(value) for value in data.path[index])
+        x, y, yaw = data.pose
+        bearing = math.atan2(target_y - y, target_x - x)
+        off = float(_angle_between(bearing, yaw))
+        if self.mode == 1:
+            off = min(off, float(_angle_between(bearing, yaw + math.pi)))
+        if off < self.max_angle_to_furthest:
+            return
+        bearings = np.arctan2(target_y - data.y[:, -1], target_x - data.x[:, -1])
+        apart = _angle_between(data.yaw[:, -1], bearings)
+        if self.mode == 1:
+            bearings = np.where(apart < math.pi / 2.0, bearings, bearings + math.pi)
+            apart = _angle_between(data.yaw[:, -1], bearings)
+        data.costs += _powered(apart, self.weight, self.power)
+
+
+@dataclass(frozen=True)
+class PathAlignCritic:
+    """Away from the goal, once the samples reach offset_from_furthest points along the path
+    and few of those points are blocked: each trajectory's mean distance, over every
+    trajectory_point_step-th point, to the path point as far along the path as the trajectory
+    has come along itself (path_align_critic.cpp, use_path_orientations false)."""
+
+    weight: float = 14.0
+    power: int = 1
+    threshold_to_consider: float = 0.5  # m
+    offset_from_furthest: int = 20
+    trajectory_point_step: int = 4
+    max_path_occupancy_ratio: float = 0.05
+
+    def __call__(self, data: CriticData) -> None:
+        count = data.furthest_reached()
+        if data.within(self.threshold_to_consider) or count < self.offset_from_furthest:
+            return
+        valid = data.path_points_valid()[:count]
+        if self._blocked(valid):
+            return
+        path = data.path[:count]
+        along = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(path, axis=0).T))])
+        x, y = data.x[:, :: self.trajectory_point_step], data.y[:, :: self.trajectory_point_step]
+        travelled = np.cumsum(np.hypot(np.diff(x, axis=1), np.diff(y, axis=1)), axis=1)
+        nearest = np.maximum.accumulate(_closest_along(along, travelled), axis=1)
+        counted = valid[nearest]
+        gaps = np.hypot(path[nearest, 0] - x[:, 1:], path[nearest, 1] - y[:, 1:])
+        samples = counted.sum(axis=1)
+        summed = np.where(counted, gaps, 0.0).sum(axis=1)
+        cost = np.where(samples > 0, summed / np.maximum(samples, 1), 0.0).astype(np.float32)
+        data.costs += _powered(cost, self.weight, self.power)
+
+    def _blocked(self, valid: npt.NDArray[np.bool_]) -> bool:
+        """Whether, at some point along the counted path, more than the occupancy ratio of
+        the points so far (and more than two) are blocked, as the critic counts them."""
+        invalid = np.cumsum(~valid)
+        ratio = invalid / float(len(valid))
+        return bool(((ratio > self.max_path_occupancy_ratio) & (invalid > 2)).any())
+
+
+def _closest_along(along: npt.NDArray[np.float64], travelled: npt.NDArray[np.float64]) -> IntArray:
+    """findClosestPathPt from the start: the path point whose distance along the path is
+    nearest each distance travelled (the later one on a tie), the last past the end."""
+    after = np.searchsorted(along, travelled, side="right")
+    last = len(along) - 1
+    capped = np.minimum(after, last)
+    before = np.maximum(after - 1, 0)
+    nearer_before = (after <= last) & (travelled - along[before] < along[capped] - travelled)
+    closest: IntArray = np.where(after > last, last, np.where(nearer_before, before, capped))
+    return closest

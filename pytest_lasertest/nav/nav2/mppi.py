@@ -80,6 +80,19 @@ class CostGrid:
         )
         return found
 
+    def valid(self, points: F32) -> npt.NDArray[np.bool_]:
+        """findPathCosts over points (P, 2): on the grid, neither lethal nor inscribed, and
+        unknown only where unknown space is tracked."""
+        costs = self.at(points[:, 0], points[:, 1])
+        column = (points[:, 0] - np.float32(self.origin[0])) / np.float32(self.resolution)
+        row = (points[:, 1] - np.float32(self.origin[1])) / np.float32(self.resolution)
+        height, width = self.costs.shape
+        on = (points[:, 0] >= self.origin[0]) & (points[:, 1] >= self.origin[1])
+        on &= (column < width) & (row < height)
+        blocked = (costs == 253) | (costs == 254) | ((costs == 255) & (not self.tracking_unknown))
+        valid: npt.NDArray[np.bool_] = on & ~blocked
+        return valid
+
 
 @dataclass
 class CriticData:
@@ -106,6 +119,18 @@ class CriticData:
         """withinPositionGoalTolerance: whether the robot is nearer the goal than `threshold`."""
         distance = (self.goal[0] - self.pose[0]) ** 2 + (self.goal[1] - self.pose[1]) ** 2
         return bool(distance < threshold**2)
+
+    def path_points_valid(self) -> npt.NDArray[np.bool_]:
+        """findPathCosts, once a cycle: which path points but the last the costmap leaves
+        free to drive to, shape (P - 1,); all of them without a costmap."""
+        if self.path_valid is None:
+            points = self.path[:-1]
+            self.path_valid = (
+                np.ones(len(points), dtype=bool)
+                if self.costmap is None
+                else self.costmap.valid(points)
+            )
+        return self.path_valid
 
     def furthest_reached(self) -> int:
         """findPathFurthestReachedPoint: trajectory by trajectory, the path point nearest its

@@ -1,21 +1,26 @@
-"""Nav2 as Jazzy's nav2_bringup runs it, without its behaviour tree's recoveries yet: being built.
+"""Nav2 as Jazzy's nav2_bringup runs it (nav2_params.yaml and the default behaviour tree,
+navigate_to_pose_w_replanning_and_recovery.xml, at jazzy f4108e5b): being built.
 
-Scan by scan it does what Nav2's servers do on their clocks (nav2_params.yaml at jazzy
-f4108e5b):
+Scan by scan it does what Nav2's servers do on their clocks:
 
-- the local costmap (a 3 m rolling window, 5 Hz) and the global costmap (1 Hz, unknown space
-  tracked) take the latest scan through Nav2's obstacle layer;
-- every second the behaviour tree's ComputePathToPose plans again with NavFn (tolerance 0.5 m,
-  unknown space allowed);
+- the local costmap (a 3 m rolling window, 5 Hz) and the global costmap (1 Hz) take the latest
+  scan through Nav2's obstacle layer;
+- every second the tree's ComputePathToPose plans again with NavFn (tolerance 0.5 m, unknown
+  space allowed), once more after clearing the global costmap if it finds no plan;
 - the controller server (20 Hz) runs MPPI on the plan pruned as MPPI's PathHandler prunes it
-  (from the point nearest the robot, up to prune_distance 1.7 m along), with the critics built
-  so far; the goal checker stops at 0.25 m of each goal in turn; the progress checker fails the
-  run when the robot has not moved 0.5 m in 10 s, and MPPI fails it when every sample
-  collides twice in a row. Either failure, which the behaviour tree would answer with its
-  recoveries, stands the robot still.
+  (from the point nearest the robot, up to prune_distance 1.7 m along), with Jazzy's critics
+  but GoalAngleCritic (the routes here have no goal heading); the goal checker ends each goal
+  at 0.25 m; the progress checker (0.5 m in 10 s) or MPPI with every sample colliding fails
+  FollowPath, which runs once more after clearing the local costmap;
+- a failure past those makes the tree recover with the next of its round robin (clear both
+  costmaps, Spin 1.57 rad, Wait 5 s, BackUp 0.30 m at 0.15 m/s; a failing one hands on to the
+  next), then navigate afresh; after 6 recoveries the navigation fails and the robot stands.
 
-Where this differs on purpose: without a map, the global costmap is a window over the route
-(as move_base's here), not the map's extent.
+Not yet imitated: the velocity smoother, the collision monitor, GoalAngleCritic, a team's
+params file. Where this differs on purpose: without a map, the global costmap is a window over
+the route (as move_base's here), not the map's extent, and it starts free, as the static layer
+of an open field's map would make it (with unknown space, NavFn keeps to the cells the scans
+have cleared, which rays that return nothing never clear).
 """
 
 from __future__ import annotations
@@ -37,6 +42,8 @@ from pytest_lasertest.nav.nav2.critics import (
     ConstraintCritic,
     CostCritic,
     GoalCritic,
+    PathAlignCritic,
+    PathAngleCritic,
     PathFollowCritic,
     PreferForwardCritic,
 )
@@ -65,7 +72,9 @@ class Nav2Settings:
             inflation_radius=0.70,
             cost_scaling_factor=3.0,
             update_frequency=1.0,
-            track_unknown_space=True,
+            # Nav2 tracks unknown space here, but its static layer has the map's free space
+            # known from the start; the worlds here are open ground, their map all free.
+            track_unknown_space=False,
         )
     )
     source: ObservationSource = field(default_factory=ObservationSource)
@@ -100,8 +109,10 @@ class Nav2:
             ConstraintCritic(s.mppi),
             CostCritic(),
             GoalCritic(),
-            PreferForwardCritic(),
+            PathAlignCritic(),
             PathFollowCritic(),
+            PathAngleCritic(),
+            PreferForwardCritic(),
         ]
         self.mppi = Optimizer(s.mppi, critics, np.random.default_rng(seed))
         self.local = Nav2Costmap(s.local_costmap, self.footprint, s.source, s.marking)

@@ -11,8 +11,10 @@ from pytest_lasertest.nav.nav2.critics import (
     ConstraintCritic,
     CostCritic,
     GoalCritic,
+    PathAngleCritic,
     PathFollowCritic,
     PreferForwardCritic,
+    _closest_along,
 )
 from pytest_lasertest.nav.nav2.mppi import (
     CostGrid,
@@ -122,3 +124,31 @@ def test_a_robot_whose_every_trajectory_collides_gets_no_command() -> None:
     mppi = Optimizer(SETTINGS, [CostCritic()], np.random.default_rng(0))
     in_the_wall = wall_ahead(-1.0)
     assert mppi.command((0.0, 0.0, 0.0), (0.0, 0.0), PATH, (4.95, 0.0), in_the_wall) is None
+
+
+def test_the_path_point_to_align_to_is_nav2s_search_from_the_last_one_found() -> None:
+    rng = np.random.default_rng(2)
+    for _ in range(50):
+        along = np.concatenate([[0.0], np.cumsum(rng.uniform(0.0, 0.1, 30))])
+        travelled = np.cumsum(rng.uniform(0.0, 0.15, (5, 12)), axis=1)
+        expected = np.zeros(travelled.shape, dtype=np.int64)
+        for row in range(5):
+            point = 0
+            for column, distance in enumerate(travelled[row]):  # findClosestPathPt, as written
+                before = along[point] if point else 0.0
+                found = len(along) - 1
+                for index in range(point + 1, len(along)):
+                    if along[index] > distance:
+                        found = index - 1 if distance - before < along[index] - distance else index
+                        break
+                    before = along[index]
+                point = expected[row, column] = found
+        found = np.maximum.accumulate(_closest_along(along, travelled), axis=1)
+        assert np.array_equal(found, expected)
+
+
+def test_a_robot_facing_away_from_its_plan_is_turned_toward_it_by_the_path_angle_critic() -> None:
+    mppi = Optimizer(SETTINGS, [PathAngleCritic()], np.random.default_rng(4))
+    facing_left = (0.0, 0.0, 1.5)  # rad; the plan runs along +x
+    commands = [mppi.command(facing_left, (0.0, 0.0), PATH, (4.95, 0.0)) for _ in range(15)]
+    assert all(command is not None and command[1] < 0.0 for command in commands[5:])
