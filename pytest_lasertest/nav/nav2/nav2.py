@@ -16,11 +16,12 @@ Scan by scan it does what Nav2's servers do on their clocks:
   costmaps, Spin 1.57 rad, Wait 5 s, BackUp 0.30 m at 0.15 m/s; a failing one hands on to the
   next), then navigate afresh; after 6 recoveries the navigation fails and the robot stands.
 
-Not yet imitated: the velocity smoother, the collision monitor, GoalAngleCritic, a team's
-params file. Where this differs on purpose: without a map, the global costmap is a window over
-the route (as move_base's here), not the map's extent, and it starts free, as the static layer
-of an open field's map would make it (with unknown space, NavFn keeps to the cells the scans
-have cleared, which rays that return nothing never clear).
+Every command passes the collision monitor (`collision_monitor.py`). Not yet imitated: the
+velocity smoother, GoalAngleCritic, a team's params file. Where this differs on purpose:
+without a map, the global costmap is a window over the route (as move_base's here), not the
+map's extent, and it starts free, as the static layer of an open field's map would make it
+(with unknown space, NavFn keeps to the cells the scans have cleared, which rays that return
+nothing never clear).
 """
 
 from __future__ import annotations
@@ -37,6 +38,11 @@ from pytest_lasertest.model.route import place
 from pytest_lasertest.nav.move_base.costmap import LETHAL, CostmapSettings
 from pytest_lasertest.nav.move_base.navfn import NavfnSettings, plan_path
 from pytest_lasertest.nav.nav2.behaviors import CYCLE_PERIOD, BackUp, Spin, Wait
+from pytest_lasertest.nav.nav2.collision_monitor import (
+    CollisionMonitorSettings,
+    approach,
+    scan_points,
+)
 from pytest_lasertest.nav.nav2.costmap import Nav2Costmap
 from pytest_lasertest.nav.nav2.critics import (
     ConstraintCritic,
@@ -89,6 +95,7 @@ class Nav2Settings:
     required_movement_radius: float = 0.5  # m
     movement_time_allowance: float = 10.0  # s
     number_of_retries: int = 6  # the tree's NavigateRecovery
+    collision_monitor: CollisionMonitorSettings = field(default_factory=CollisionMonitorSettings)
 
 
 class Nav2:
@@ -131,6 +138,12 @@ class Nav2:
         self._now = 0.0  # s
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
+        """The command of the latest cycle, as the collision monitor lets it through."""
+        command = self._navigate(scan, odometry, time)
+        monitor = self.settings.collision_monitor
+        return approach(command, scan_points(scan, monitor), self.footprint, monitor)
+
+    def _navigate(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
         """The command of the latest cycle; each server on its own clock, the behaviour tree
         choosing what runs."""
         pose = (odometry.x, odometry.y, odometry.yaw)

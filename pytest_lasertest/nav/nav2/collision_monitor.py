@@ -1,0 +1,100 @@
+"""Nav2's collision monitor as Jazzy's nav2_bringup runs it: one FootprintApproach polygon on
+the scan, slowing the command so that the robot reaches an obstacle no sooner than
+time_before_collision (nav2_collision_monitor at jazzy f4108e5b: src/collision_monitor_node.cpp
+processApproach, src/polygon.cpp getCollisionTime and isPointInside, src/kinematics.cpp,
+src/scan.cpp; nav2_params.yaml's collision_monitor). Our own numpy code.
+
+The scan's readings with range_min <= r <= range_max (inclusive, unlike the costmap's
+laser_geometry projection) become points in the base frame, if the scanner's height lies
+between the source's min_height and max_height. If min_points of them lie inside the footprint
+now, the command becomes zero; else the robot is moved at the command, a simulation step at a
+time up to time_before_collision, and at the first step whose footprint holds min_points, the
+command is scaled by that step's time over time_before_collision.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.nav.protocol import LaserScan
+
+Command = tuple[float, float]  # m/s, rad/s
+
+
+@dataclass(frozen=True)
+class CollisionMonitorSettings:
+    """The FootprintApproach polygon and the scan source, with Nav2's names and Jazzy's values."""
+
+    time_before_collision: float = 1.2  # s
+    simulation_time_step: float = 0.1  # s
+    min_points: int = 6
+    min_height: float = 0.15  # m
+    max_height: float = 2.0  # m
+
+
+def scan_points(scan: LaserScan, settings: CollisionMonitorSettings) -> FloatArray:
+    """The scan's readings with range_min <= r <= range_max in the base frame, shape (P, 2) m;
+    none when the scanner's height lies outside the source's heights."""
+    if not settings.min_height <= scan.mount.xyz[2] <= settings.max_height:
+        return np.zeros((0, 2))
+    ranges = np.asarray(scan.ranges)
+    kept = (ranges >= scan.meta.range_min) & (ranges <= scan.meta.range_max)
+    counted = LaserScan(scan.stamp, np.where(kept, ranges, np.inf), scan.meta, scan.mount)
+    return counted.points_in_base()
+
+
+def approach(
+    command: Command, points: FloatArray, footprint: FloatArray, settings: CollisionMonitorSettings
+) -> Command:
+    """The command the monitor lets through, for points (P, 2) m in the base frame and the
+    footprint (V, 2) m."""
+    if _inside(points, footprint) >= settings.min_points:
+        return 0.0, 0.0
+    collision = _collision_time(command, points, footprint, settings)
+    if collision is None:
+        return command
+    ratio = collision / settings.time_before_collision
+    return command[0] * ratio, command[1] * ratio
+
+
+def _collision_time(
+    command: Command, points: FloatArray, footprint: FloatArray, settings: CollisionMonitorSettings
+) -> float | None:
+    """getCollisionTime: the robot moved at the command, step by step, the velocity turning
+    with it; the time of the first step whose footprint holds min_points, or None."""
+    x = y = heading = 0.0
+    velocity_x, velocity_y = command[0], 0.0
+    dt, time = settings.simulation_time_step, 0.0
+    while time <= settings.time_before_collision:  # the time accumulates as Nav2's loop does
+        turn = command[1] * dt
+        x, y, heading = x + velocity_x * dt, y + velocity_y * dt, heading + turn
+        velocity_x, velocity_y = (
+            velocity_x * math.cos(turn) - velocity_y * math.sin(turn),
+            velocity_x * math.sin(turn) + velocity_y * math.cos(turn),
+        )
+        cos, sin = math.cos(heading), math.sin(heading)
+        moved_x, moved_y = points[:, 0] - x, points[:, 1] - y
+        seen = np.column_stack([moved_x * cos + moved_y * sin, -moved_x * sin + moved_y * cos])
+        if _inside(seen, footprint) >= settings.min_points:
+            return time
+        time += dt
+    return None
+
+
+def _inside(points: FloatArray, polygon: FloatArray) -> int:
+    """How many points (P, 2) lie inside the polygon (V, 2), by isPointInside's ray crossings."""
+    if not len(points):
+        return 0
+    px, py = points[:, 0:1], points[:, 1:2]  # (P, 1)
+    start, end = np.roll(polygon, 1, axis=0), polygon  # edge i -> j, the last to the first first
+    between = (py <= start[:, 1]) == (py > end[:, 1])  # (P, V)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        crossing = start[:, 0] + (py - start[:, 1]) * (end[:, 0] - start[:, 0]) / (
+            end[:, 1] - start[:, 1]
+        )
+    crossings = (between & (crossing > px)).sum(axis=1)
+    return int((crossings % 2 == 1).sum())
