@@ -16,12 +16,12 @@ Scan by scan it does what Nav2's servers do on their clocks:
   costmaps, Spin 1.57 rad, Wait 5 s, BackUp 0.30 m at 0.15 m/s; a failing one hands on to the
   next), then navigate afresh; after 6 recoveries the navigation fails and the robot stands.
 
-Every command passes the collision monitor (`collision_monitor.py`). Not yet imitated: the
-velocity smoother, GoalAngleCritic, a team's params file. Where this differs on purpose:
-without a map, the global costmap is a window over the route (as move_base's here), not the
-map's extent, and it starts free, as the static layer of an open field's map would make it
-(with unknown space, NavFn keeps to the cells the scans have cleared, which rays that return
-nothing never clear).
+Every command passes the velocity smoother (`velocity_smoother.py`), then the collision monitor
+(`collision_monitor.py`). Not yet imitated: GoalAngleCritic, a team's params file. Where this
+differs on purpose: without a map, the global costmap is a window over the route (as
+move_base's here), not the map's extent, and it starts free, as the static layer of an open
+field's map would make it (with unknown space, NavFn keeps to the cells the scans have cleared,
+which rays that return nothing never clear).
 """
 
 from __future__ import annotations
@@ -55,6 +55,7 @@ from pytest_lasertest.nav.nav2.critics import (
 )
 from pytest_lasertest.nav.nav2.mppi import F32, Critic, MppiSettings, Optimizer
 from pytest_lasertest.nav.nav2.obstacle_layer import Marking, ObservationSource
+from pytest_lasertest.nav.nav2.velocity_smoother import SmootherSettings, VelocitySmoother
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 
 Pose = tuple[float, float, float]  # m, m, rad
@@ -96,6 +97,7 @@ class Nav2Settings:
     movement_time_allowance: float = 10.0  # s
     number_of_retries: int = 6  # the tree's NavigateRecovery
     collision_monitor: CollisionMonitorSettings = field(default_factory=CollisionMonitorSettings)
+    smoother: SmootherSettings = field(default_factory=SmootherSettings)
 
 
 class Nav2:
@@ -123,6 +125,7 @@ class Nav2:
         ]
         self.mppi = Optimizer(s.mppi, critics, np.random.default_rng(seed))
         self.local = Nav2Costmap(s.local_costmap, self.footprint, s.source, s.marking)
+        self.smoother = VelocitySmoother(s.smoother)
         self._global: Nav2Costmap | None = None  # made at the first scan, around the route
         self.plan: FloatArray = np.zeros((0, 2))  # m
         self.failed: str | None = None  # why the navigation stopped, if it did
@@ -138,8 +141,8 @@ class Nav2:
         self._now = 0.0  # s
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
-        """The command of the latest cycle, as the collision monitor lets it through."""
-        command = self._navigate(scan, odometry, time)
+        """The command of the latest cycle, smoothed, as the collision monitor lets it through."""
+        command = self.smoother.step(self._navigate(scan, odometry, time), time)
         monitor = self.settings.collision_monitor
         return approach(command, scan_points(scan, monitor), self.footprint, monitor)
 
