@@ -143,6 +143,17 @@ class CriticData:
 Critic = Callable[[CriticData], None]
 
 
+@dataclass(frozen=True)
+class Cycle:
+    """What one controller cycle starts from."""
+
+    pose: tuple[float, float, float]  # m, m, rad
+    speed: tuple[float, float]  # m/s, rad/s
+    path: F32  # (P, 2) m
+    goal: tuple[float, float]  # m
+    costmap: CostGrid | None
+
+
 def _furthest_reached(end_x: F32, end_y: F32, path: F32) -> int:
     """The sequential scan of findPathFurthestReachedPoint over ends (B,) and a path (P, 2):
     the furthest index moves only when a trajectory's nearest point past it lies further, so
@@ -186,7 +197,8 @@ class Optimizer:
         """The twist [vx, wz] (m/s, rad/s) to drive now, or None when every sample failed
         more than retry_attempt_limit times in a row (the controller's NoValidControl); each
         failure starts the sequence afresh, as Optimizer::fallback resets it."""
-        while not self._optimize(pose, speed, path, goal, costmap):
+        cycle = Cycle(pose, speed, path, goal, costmap)
+        while not self._optimize(cycle):
             self._reset()
             self.failures += 1
             if self.failures > self.settings.retry_attempt_limit:
@@ -198,17 +210,10 @@ class Optimizer:
         self._shift()
         return command
 
-    def _optimize(
-        self,
-        pose: tuple[float, float, float],
-        speed: tuple[float, float],
-        path: F32,
-        goal: tuple[float, float],
-        costmap: CostGrid | None,
-    ) -> bool:
+    def _optimize(self, cycle: Cycle) -> bool:
         """iteration_count rounds of sampling, scoring and updating; False if a critic failed."""
         for _ in range(self.settings.iteration_count):
-            data = self._samples(pose, speed, path, goal, costmap)
+            data = self._samples(cycle)
             for critic in self.critics:
                 critic(data)
             if data.fail:
@@ -220,14 +225,7 @@ class Optimizer:
         self.vx[:], self.wz[:] = 0.0, 0.0
         self.history[:] = 0.0
 
-    def _samples(
-        self,
-        pose: tuple[float, float, float],
-        speed: tuple[float, float],
-        path: F32,
-        goal: tuple[float, float],
-        costmap: CostGrid | None,
-    ) -> CriticData:
+    def _samples(self, cycle: Cycle) -> CriticData:
         """Noised sequences, bounded from the robot's speed on, and their trajectories."""
         s = self.settings
         # Time-major (T, B) inside, so that each step's samples lie together; the critics
@@ -236,13 +234,13 @@ class Optimizer:
         noise = self.rng.standard_normal((2, *shape), np.float32)
         noised_vx = self.vx[:, np.newaxis] + np.float32(s.vx_std) * noise[0]
         noised_wz = self.wz[:, np.newaxis] + np.float32(s.wz_std) * noise[1]
-        vx, wz = _predict(noised_vx, noised_wz, speed, s)
-        x, y, yaw = _integrate(vx, wz, pose, s.model_dt)
+        vx, wz = _predict(noised_vx, noised_wz, cycle.speed, s)
+        x, y, yaw = _integrate(vx, wz, cycle.pose, s.model_dt)
         costs = np.zeros(s.batch_size, dtype=np.float32)
         return CriticData(
-            pose,
-            goal,
-            path,
+            cycle.pose,
+            cycle.goal,
+            cycle.path,
             noised_vx.T,
             noised_wz.T,
             vx.T,
@@ -252,7 +250,7 @@ class Optimizer:
             yaw.T,
             s.model_dt,
             costs,
-            costmap,
+            cycle.costmap,
         )
 
     def _update(self, data: CriticData) -> None:
