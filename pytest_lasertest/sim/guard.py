@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import inspect
 import math
+import numbers
 import random
 import reprlib
 import traceback
@@ -91,6 +92,7 @@ class Guard:
         self._alarm = Alarm()
         self._observe: Any = None
         self._rng = _global_rng_states()
+        self.goal_tolerance: float | None = None  # m, the controller's own, if it has one
 
     def __enter__(self) -> Guard:
         self._alarm.install()
@@ -116,6 +118,9 @@ class Guard:
             )
         _check_arity(observe)
         self._observe = observe
+        self.goal_tolerance = _goal_tolerance(
+            self._call("the factory", 0.0, getattr, controller, "goal_tolerance", None)
+        )
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
         """The controller's command for this scan: two finite floats."""
@@ -309,3 +314,21 @@ def _global_rng_states() -> tuple[object, ...]:
     assert isinstance(state, dict)
     inner = state["state"]
     return (random.getstate(), inner["key"].tobytes(), inner["pos"], state["has_gauss"])
+
+
+def _goal_tolerance(value: object) -> float | None:
+    """A controller's goal_tolerance: none, or a positive finite number of metres."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not 0 < value < math.inf:
+        raise Faulted(
+            ControllerFault(
+                "the factory",
+                0.0,
+                f"returned a controller whose goal_tolerance is {_shown(value)}, not a "
+                "positive number of metres",
+                "set goal_tolerance to the distance (m) at which its goal checker counts the "
+                "goal reached, or leave it out",
+            )
+        )
+    return float(value)

@@ -19,6 +19,7 @@ call and counts toward its time: some 40 us a scan read.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -126,7 +127,10 @@ class _Runner:
         self.controller = controller
         self.drive = Drive(scenario.robot)
         start = Point2D(scenario.start.x, scenario.start.y)
-        self.referee = Referee(scenario.rules, start, scenario.route, scenario.time_step)
+        rules = scenario.rules
+        if controller.goal_tolerance is not None:
+            rules = dataclasses.replace(rules, goal_tolerance=controller.goal_tolerance)
+        self.referee = Referee(rules, start, scenario.route, scenario.time_step)
         self.lidar = FlatLidar(scenario.profile, scenario.obstacles)
         self.meta = scenario.profile.to_laserscan_meta()
 

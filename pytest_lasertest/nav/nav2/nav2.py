@@ -126,6 +126,7 @@ class Nav2:
         self.mppi = Optimizer(s.mppi, critics, np.random.default_rng(seed))
         self.local = Nav2Costmap(s.local_costmap, self.footprint, s.source, s.marking)
         self.smoother = VelocitySmoother(s.smoother)
+        self.goal_tolerance = s.xy_goal_tolerance  # m: the goal oracle judges by it
         self._global: Nav2Costmap | None = None  # made at the first scan, around the route
         self.plan: FloatArray = np.zeros((0, 2))  # m
         self.failed: str | None = None  # why the navigation stopped, if it did

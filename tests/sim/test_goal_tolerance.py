@@ -1,0 +1,53 @@
+"""A controller's own goal tolerance: the goal oracle judges the run by it, and a tolerance that
+is not a positive number of metres fails the drive, named."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from pytest_lasertest.model.geometry import Point2D, Pose2D
+from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.nav.protocol import LaserScan, Odometry
+from pytest_lasertest.pairsfile import load_pairs_file
+from pytest_lasertest.sim.scenario import ControllerError, Scenario, run_scenario
+from tests.helpers import EXAMPLES
+
+PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+PROFILE = PAPER.pairs[0].baseline.profile
+GOAL = (Point2D(3.0, 0.0),)
+
+
+class StopsShort:
+    """Drives straight at the goal and stops 0.4 m before it."""
+
+    def __init__(self, tolerance: object) -> None:
+        if tolerance is not None:
+            self.goal_tolerance = tolerance
+
+    def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
+        return (0.5, 0.0) if math.dist((odometry.x, odometry.y), (3.0, 0.0)) > 0.4 else (0.0, 0.0)
+
+
+def drive(tolerance: object) -> bool:
+    """Whether the goal oracle passes the run of a StopsShort declaring `tolerance`."""
+
+    def make(robot: Robot, route: tuple[Point2D, ...]) -> StopsShort:
+        return StopsShort(tolerance)
+
+    scenario = Scenario(PAPER.robot, PROFILE, (), Pose2D(0.0, 0.0, 0.0), GOAL, 12.0, seed=0)
+    return run_scenario(scenario, make).verdicts.goal.passed
+
+
+def test_a_controller_that_counts_half_a_metre_as_arrived_is_judged_by_it() -> None:
+    assert drive(0.5)
+    assert not drive(None)  # the rules' 0.2 m
+
+
+@pytest.mark.parametrize("tolerance", [0.0, -0.2, math.inf, math.nan, "far", True])
+def test_a_goal_tolerance_that_is_not_a_positive_number_of_metres_fails_the_drive(
+    tolerance: object,
+) -> None:
+    with pytest.raises(ControllerError, match="goal_tolerance"):
+        drive(tolerance)
