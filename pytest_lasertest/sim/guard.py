@@ -320,7 +320,10 @@ def _goal_tolerance(value: object) -> float | None:
     """A controller's goal_tolerance: none, or a positive finite number of metres."""
     if value is None:
         return None
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not 0 < value < math.inf:
+    metres = (
+        float(value) if isinstance(value, numbers.Real) and not isinstance(value, bool) else 0.0
+    )
+    if not 0.0 < metres < math.inf:
         raise Faulted(
             ControllerFault(
                 "the factory",
@@ -331,4 +334,4 @@ def _goal_tolerance(value: object) -> float | None:
                 "goal reached, or leave it out",
             )
         )
-    return float(value)
+    return metres
