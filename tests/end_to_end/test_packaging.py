@@ -137,5 +137,6 @@ def test_the_wheel_ships_the_robots_the_catalogue_and_the_entry_points(tmp_path:
     assert "lasertest = pytest_lasertest.cli:main" in text
     assert (
         "[lasertest.controllers]\nmove_base = pytest_lasertest.nav.move_base:MoveBase\n"
+        "nav2 = pytest_lasertest.nav.nav2.nav2:Nav2\n"
         "reactive = pytest_lasertest.nav.reactive:ReactiveController"
     ) in text

@@ -48,18 +48,19 @@ BAD_CONTROLLERS = {
         "3",
         "expected `module:attribute` or the name of a registered controller, got 3",
         "write e.g. `controller: my_controller:make_controller`, "
-        "or a registered name (move_base, reactive)",
+        "or a registered name (move_base, nav2, reactive)",
     ),
     "a mapping": BadController(
         "{module: still}",
         "expected `module:attribute` or the name of a registered controller, got a mapping",
-        "or a registered name (move_base, reactive)",
+        "or a registered name (move_base, nav2, reactive)",
     ),
     "neither form": BadController(
         "reactiv",
         "'reactiv' is neither `module:attribute` nor a controller registered in the entry-point "
         "group lasertest.controllers",
-        "did you mean 'reactive'? registered controllers: move_base, reactive; or name a factory",
+        "did you mean 'reactive'? registered controllers: move_base, nav2, reactive; "
+        "or name a factory",
     ),
     "a colon without a factory": BadController(
         "'still:'",

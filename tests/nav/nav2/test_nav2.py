@@ -3,6 +3,8 @@ robot that does not move for the progress checker's allowance stops."""
 
 from __future__ import annotations
 
+from importlib.metadata import entry_points
+
 import numpy as np
 
 from pytest_lasertest.model.geometry import Point2D, Pose2D
@@ -48,3 +50,10 @@ def test_a_robot_that_never_moves_goes_through_the_default_trees_recoveries_in_o
     ]
     times = [round(time) for _, time in nav2.recovered[:4]]
     assert times == [10, 20, 30, 40]
+
+
+def test_a_pairs_file_names_nav2_as_a_registered_controller() -> None:
+    (nav2,) = [
+        point for point in entry_points(group="lasertest.controllers") if point.name == "nav2"
+    ]
+    assert nav2.load() is Nav2
