@@ -292,8 +292,7 @@ class Nav2:
         """One controller-server cycle: the goal checker, the progress checker, then MPPI."""
         goal = self.route[self.goal_index]
         if math.hypot(goal.x - pose[0], goal.y - pose[1]) <= self.settings.xy_goal_tolerance:
-            self.goal_index += 1
-            self._next["plan"] = -math.inf
+            self._next_goal()
             return 0.0, 0.0
         if not self._progressing(pose, time):
             return None  # FAILED_TO_MAKE_PROGRESS
@@ -302,6 +301,15 @@ class Nav2:
         path = self._pruned(pose)
         # None: NO_VALID_CONTROL, every sample colliding.
         return self.mppi.command(pose, speed, path, (goal.x, goal.y), self.local.cost_grid())
+
+    def _next_goal(self) -> None:
+        """The next waypoint, navigated to by a fresh run of the tree: its retries, round robin
+        and checkers start again, as each NavigateToPose goal's do."""
+        self.goal_index += 1
+        self._retries = self._robin = 0
+        self._follow_retried = False
+        self._progress = None
+        self._next["plan"] = -math.inf
 
     def _progressing(self, pose: Pose, time: float) -> bool:
         """SimpleProgressChecker: moved required_movement_radius within the allowance."""
