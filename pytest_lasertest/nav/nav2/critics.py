@@ -15,9 +15,8 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import IntArray
+from pytest_lasertest.nav.move_base.costmap import INSCRIBED, LETHAL, UNKNOWN
 from pytest_lasertest.nav.nav2.mppi import F32, CriticData, MppiSettings
-
-INSCRIBED, LETHAL, NO_INFORMATION = 253, 254, 255
 
 
 def _powered(cost: F32, weight: float, power: int) -> F32:
@@ -90,7 +89,7 @@ class PathFollowCritic:
         last = len(data.path) - 1
         if len(data.path) < 2 or data.within(self.threshold_to_consider):
             return
-        index = min(data.furthest_reached() + self.offset_from_furthest, last)
+        index = data.ahead_of_furthest(self.offset_from_furthest)
         valid = data.path_points_valid()
         while index < last - 1 and not valid[index]:
             index += 1
@@ -124,7 +123,7 @@ class CostCritic:
         costs = data.costmap.at(data.x[:, ::step][:, :points], data.y[:, ::step][:, :points])
         collides = (costs == LETHAL) | (costs == INSCRIBED)
         if not data.costmap.tracking_unknown:
-            collides |= costs == NO_INFORMATION
+            collides |= costs == UNKNOWN
         collided = collides.any(axis=1)
         ordinary = 0.0 if data.within(self.near_goal_distance) else costs
         per_point = np.where(costs >= self.near_collision_cost, self.critical_cost, ordinary)
@@ -162,7 +161,7 @@ class PathAngleCritic:
     def __call__(self, data: CriticData) -> None:
         if data.within(self.threshold_to_consider):
             return
-        index = min(data.furthest_reached() + self.offset_from_furthest, len(data.path) - 1)
+        index = data.ahead_of_furthest(self.offset_from_furthest)
         target_x, target_y = (float(value) for value in data.path[index])
         x, y, yaw = data.pose
         bearing = math.atan2(target_y - y, target_x - x)

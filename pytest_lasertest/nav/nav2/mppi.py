@@ -26,6 +26,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
+from pytest_lasertest.nav.move_base.costmap import INSCRIBED, LETHAL, UNKNOWN
+
 F32 = npt.NDArray[np.float32]
 # Savitzky-Golay, quadratic, 9 points (utils.hpp savitskyGolayFilter).
 SAVITZKY_GOLAY = np.array([-21, 14, 39, 54, 59, 54, 39, 14, -21], dtype=np.float32) / 231.0
@@ -66,16 +68,8 @@ class CostGrid:
     def at(self, x: F32, y: F32) -> npt.NDArray[np.float32]:
         """The costs under points (any shape) m, 255 (no information) off the grid, as the
         CostCritic's worldToMapFloat reads them, in float32."""
-        column = (x - np.float32(self.origin[0])) / np.float32(self.resolution)
-        row = (y - np.float32(self.origin[1])) / np.float32(self.resolution)
-        height, width = self.costs.shape
-        on = (x >= np.float32(self.origin[0])) & (y >= np.float32(self.origin[1]))
-        on &= (column < width) & (row < height)
-        cells_x, cells_y = (
-            np.where(on, column, 0).astype(np.int64),
-            np.where(on, row, 0).astype(np.int64),
-        )
-        found: npt.NDArray[np.float32] = np.where(on, self.costs[cells_y, cells_x], 255).astype(
+        cells_x, cells_y, on = self._cells(x, y)
+        found: npt.NDArray[np.float32] = np.where(on, self.costs[cells_y, cells_x], UNKNOWN).astype(
             np.float32
         )
         return found
@@ -83,15 +77,24 @@ class CostGrid:
     def valid(self, points: F32) -> npt.NDArray[np.bool_]:
         """findPathCosts over points (P, 2): on the grid, neither lethal nor inscribed, and
         unknown only where unknown space is tracked."""
-        costs = self.at(points[:, 0], points[:, 1])
-        column = (points[:, 0] - np.float32(self.origin[0])) / np.float32(self.resolution)
-        row = (points[:, 1] - np.float32(self.origin[1])) / np.float32(self.resolution)
-        height, width = self.costs.shape
-        on = (points[:, 0] >= self.origin[0]) & (points[:, 1] >= self.origin[1])
-        on &= (column < width) & (row < height)
-        blocked = (costs == 253) | (costs == 254) | ((costs == 255) & (not self.tracking_unknown))
+        cells_x, cells_y, on = self._cells(points[:, 0], points[:, 1])
+        costs = np.where(on, self.costs[cells_y, cells_x], UNKNOWN)
+        blocked = (costs == INSCRIBED) | (costs == LETHAL)
+        blocked |= (costs == UNKNOWN) & (not self.tracking_unknown)
         valid: npt.NDArray[np.bool_] = on & ~blocked
         return valid
+
+    def _cells(
+        self, x: F32, y: F32
+    ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.bool_]]:
+        """worldToMapFloat: the cells (x, y) of points, (0, 0) where they lie off the grid, and
+        which lie on it."""
+        column = (x - np.float32(self.origin[0])) / np.float32(self.resolution)
+        row = (y - np.float32(self.origin[1])) / np.float32(self.resolution)
+        height, width = self.costs.shape
+        on = (x >= np.float32(self.origin[0])) & (y >= np.float32(self.origin[1]))
+        on &= (column < width) & (row < height)
+        return np.where(on, column, 0).astype(np.int64), np.where(on, row, 0).astype(np.int64), on
 
 
 @dataclass
@@ -131,6 +134,10 @@ class CriticData:
                 else self.costmap.valid(points)
             )
         return self.path_valid
+
+    def ahead_of_furthest(self, offset: int) -> int:
+        """The path point `offset` past the furthest the samples reach, the last at most."""
+        return min(self.furthest_reached() + offset, len(self.path) - 1)
 
     def furthest_reached(self) -> int:
         """findPathFurthestReachedPoint: trajectory by trajectory, the path point nearest its
@@ -184,7 +191,6 @@ class Optimizer:
         self.vx = np.zeros(settings.time_steps, dtype=np.float32)  # (T,) the control sequence
         self.wz = np.zeros(settings.time_steps, dtype=np.float32)
         self.history = np.zeros((4, 2), dtype=np.float32)  # the last four commands [vx, wz]
-        self.failures = 0  # cycles in a row that found no sample to take
 
     def command(
         self,
@@ -197,14 +203,12 @@ class Optimizer:
         """The twist [vx, wz] (m/s, rad/s) to drive now, or None when every sample failed
         more than retry_attempt_limit times in a row (the controller's NoValidControl); each
         failure starts the sequence afresh, as Optimizer::fallback resets it."""
-        cycle = Cycle(pose, speed, path, goal, costmap)
+        cycle, failures = Cycle(pose, speed, path, goal, costmap), 0
         while not self._optimize(cycle):
             self._reset()
-            self.failures += 1
-            if self.failures > self.settings.retry_attempt_limit:
-                self.failures = 0
+            failures += 1
+            if failures > self.settings.retry_attempt_limit:
                 return None
-        self.failures = 0
         self._smooth()
         command = float(self.vx[1]), float(self.wz[1])
         self._shift()
@@ -270,13 +274,13 @@ class Optimizer:
         s = self.settings
         np.clip(self.vx, s.vx_min, s.vx_max, out=self.vx)
         np.clip(self.wz, -s.wz_max, s.wz_max, out=self.wz)
+        changes = _changes(s)
         for step in range(1, s.time_steps):
-            self.vx[step] = _bounded_vx(self.vx[step], self.vx[step - 1], s)
-            low, high = (
-                self.wz[step - 1] - s.model_dt * s.az_max,
-                self.wz[step - 1] + s.model_dt * s.az_max,
+            low_vx, high_vx, low_wz, high_wz = _limits(
+                self.vx[step - 1], self.wz[step - 1], changes
             )
-            self.wz[step] = min(max(self.wz[step], low), high)
+            self.vx[step] = min(max(self.vx[step], low_vx), high_vx)
+            self.wz[step] = min(max(self.wz[step], low_wz), high_wz)
 
     def _smooth(self) -> None:
         """savitskyGolayFilter over the sequence, the last four commands before it."""
@@ -295,14 +299,29 @@ class Optimizer:
             sequence[:-1] = sequence[1:].copy()
 
 
-def _bounded_vx(value: float, last: float, s: MppiSettings) -> float:
-    """A speed's change from `last` bounded by the acceleration limits, as Nav2 bounds it
-    (ax_min braking when moving forward, the mirror when not)."""
-    if last > 0:
-        low, high = last + s.model_dt * s.ax_min, last + s.model_dt * s.ax_max
-    else:
-        low, high = last - s.model_dt * s.ax_max, last - s.model_dt * s.ax_min
-    return float(min(max(value, low), high))
+Changes = tuple[np.float32, np.float32, np.float32]  # m/s, m/s, rad/s a step
+
+
+def _changes(s: MppiSettings) -> Changes:
+    """The most a step may change the speed up and down and the turn rate either way, in
+    float32 as Nav2 keeps them."""
+    step = s.model_dt
+    return np.float32(step * s.ax_max), np.float32(step * s.ax_min), np.float32(step * s.az_max)
+
+
+def _limits(
+    last_vx: F32 | np.float32, last_wz: F32 | np.float32, changes: Changes
+) -> tuple[F32, F32, F32, F32]:
+    """The bounds [low_vx, high_vx, low_wz, high_wz] on the speeds of the step after speeds
+    `last_vx`, `last_wz` (one sample's or many): ax_min brakes a robot moving forward, and
+    mirrored one that is not (DiffDrive's predict and applyControlSequenceConstraints alike)."""
+    up, down, turn = changes
+    forward = last_vx > 0
+    low_vx = last_vx + np.where(forward, down, -up)
+    high_vx = last_vx + np.where(forward, up, -down)
+    low_wz: F32 = np.asarray(last_wz - turn, dtype=np.float32)
+    high_wz: F32 = np.asarray(last_wz + turn, dtype=np.float32)
+    return low_vx, high_vx, low_wz, high_wz
 
 
 def _predict(
@@ -314,15 +333,11 @@ def _predict(
     vx = np.empty_like(noised_vx)
     wz = np.empty_like(noised_wz)
     vx[0], wz[0] = speed
-    up, down = np.float32(s.model_dt * s.ax_max), np.float32(s.model_dt * s.ax_min)
-    turn = np.float32(s.model_dt * s.az_max)
+    changes = _changes(s)
     for step in range(1, len(noised_vx)):
-        last_vx, last_wz = vx[step - 1], wz[step - 1]
-        forward = last_vx > 0
-        low = last_vx + np.where(forward, down, -up)
-        high = last_vx + np.where(forward, up, -down)
-        np.clip(noised_vx[step - 1], low, high, out=noised_vx[step - 1])
-        np.clip(noised_wz[step - 1], last_wz - turn, last_wz + turn, out=noised_wz[step - 1])
+        low_vx, high_vx, low_wz, high_wz = _limits(vx[step - 1], wz[step - 1], changes)
+        np.clip(noised_vx[step - 1], low_vx, high_vx, out=noised_vx[step - 1])
+        np.clip(noised_wz[step - 1], low_wz, high_wz, out=noised_wz[step - 1])
         vx[step], wz[step] = noised_vx[step - 1], noised_wz[step - 1]
     return vx, wz
 

@@ -139,7 +139,6 @@ class Nav2:
         self._retries = 0  # the tree's RecoveryNode retries used
         self._tried = 0  # actions of the round robin failed in a row
         self._follow_retried = False  # FollowPath's RecoveryNode retry used
-        self._now = 0.0  # s
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
         """The command of the latest cycle, smoothed, as the collision monitor lets it through."""
@@ -151,7 +150,7 @@ class Nav2:
         """The command of the latest cycle; each server on its own clock, the behaviour tree
         choosing what runs."""
         pose = (odometry.x, odometry.y, odometry.yaw)
-        s, self._now = self.settings, time
+        s = self.settings
         if self._global is None:
             self._global = self._global_costmap(pose)
         if self._due("local", time, 1.0 / s.local_costmap.update_frequency):
@@ -162,7 +161,7 @@ class Nav2:
             return 0.0, 0.0
         if self._behavior is not None:
             return self._recover(pose, time)
-        if self._due("plan", time, s.replan_period) and not self._plan_with_recovery(pose):
+        if self._due("plan", time, s.replan_period) and not self._plan_with_recovery(pose, time):
             return self._navigation_failed(pose, time)
         if self._due("cycle", time, 1.0 / s.controller_frequency):
             command = self._cycle(pose, (odometry.linear, odometry.angular), time)
@@ -171,13 +170,13 @@ class Nav2:
             self._command = command
         return self._command
 
-    def _plan_with_recovery(self, pose: Pose) -> bool:
+    def _plan_with_recovery(self, pose: Pose, time: float) -> bool:
         """ComputePathToPose in its RecoveryNode: once more after clearing the global
         costmap entirely."""
         if self._replan(pose):
             return True
         self.global_costmap.clear_outside(pose[0], pose[1], 0.0)
-        self.recovered.append(("ClearGlobalCostmap-Context", self._now))
+        self.recovered.append(("ClearGlobalCostmap-Context", time))
         return self._replan(pose)
 
     def _follow_failed(self, pose: Pose, time: float) -> tuple[float, float]:
@@ -243,11 +242,18 @@ class Nav2:
         return self._recover(pose, time) if self._behavior is not None else self._command
 
     def _recovered(self) -> None:
-        """A recovery succeeded: the round robin moves on; navigation starts afresh."""
+        """A recovery succeeded: the round robin moves on; navigation starts afresh, its
+        controller cycle at once."""
         self._robin = (self._robin + 1) % len(RECOVERIES)
+        self._afresh()
+        self._next["cycle"] = -math.inf
+
+    def _afresh(self) -> None:
+        """Navigate afresh: FollowPath's retry and the progress checker start again, and the
+        plan is made at once."""
         self._follow_retried = False
         self._progress = None
-        self._next["plan"] = self._next["cycle"] = -math.inf
+        self._next["plan"] = -math.inf
 
     def _collides(self, pose: Pose) -> bool:
         """Whether the footprint's outline at `pose` meets a lethal cell of the local costmap
@@ -307,9 +313,7 @@ class Nav2:
         and checkers start again, as each NavigateToPose goal's do."""
         self.goal_index += 1
         self._retries = self._robin = 0
-        self._follow_retried = False
-        self._progress = None
-        self._next["plan"] = -math.inf
+        self._afresh()
 
     def _progressing(self, pose: Pose, time: float) -> bool:
         """SimpleProgressChecker: moved required_movement_radius within the allowance."""

@@ -36,7 +36,7 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FloatArray, IntArray
-from pytest_lasertest.nav.move_base.costmap import bresenham, clipped
+from pytest_lasertest.nav.raytrace import bresenham, clipped
 
 
 class Marking(enum.Enum):
