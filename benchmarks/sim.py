@@ -1,8 +1,9 @@
 """How fast a robot run simulates, against bare PyBullet stepping, measured side by side.
 
 Each robot run drives the Husky with the paper's 720-beam, 50 Hz scanner and a controller (the
-Husky's move_base by default, or the reactive reference) for 30 s of simulated time, in an
-empty world, past one obstacle beside its route (as a placement item drives) or past four.
+Husky's move_base by default, Jazzy's Nav2, or the reactive reference) for 30 s of simulated
+time, in an empty world, past one obstacle beside its route (as a placement item drives) or
+past four.
 Right after each run, the same world (robot, ground, obstacles) is stepped bare through the
 wheel speeds the run drove: the same physics, with no scans, no controller and no oracles. That
 is the floor a run cannot beat. (Stepping wheels held at one speed instead costs PyBullet about
@@ -10,7 +11,7 @@ is the floor a run cannot beat. (Stepping wheels held at one speed instead costs
 and physics clients are released. Every world is built in one physics client, reset for it, as
 the plugin does. The last line reads `real-time factor: R; ratio to bare physics: Q` (medians).
 
-    python benchmarks/sim.py [--runs 9] [--memory-runs 1000] [--controller move_base|reactive]
+    python benchmarks/sim.py [--runs 9] [--memory-runs 1000] [--controller move_base|nav2|reactive]
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from pathlib import Path
 from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D
 from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
 from pytest_lasertest.nav.move_base import MoveBase
+from pytest_lasertest.nav.nav2.nav2 import Nav2
 from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.pairsfile import load_pairs_file
@@ -35,6 +37,7 @@ SCANNER = next(pair for pair in PAPER.pairs if pair.name == "distance").baseline
 SIMULATED = 30.0  # s per run
 CONTROLLERS: dict[str, ControllerFactory] = {
     "move_base": MoveBase,
+    "nav2": Nav2,
     "reactive": ReactiveController,
 }
 START = Pose2D(0.0, 0.0, 0.0)

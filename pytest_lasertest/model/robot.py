@@ -8,6 +8,9 @@ import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, Pose3D
 
+# A ROS 2 parameter's value, as a params file gives it.
+ParameterValue = bool | int | float | str | tuple["ParameterValue", ...]
+
 
 @dataclass(frozen=True)
 class Robot:
@@ -26,6 +29,10 @@ class Robot:
     # Its navigation stack's parameters as its configuration sets them: (section, name, value)
     # with the names of pytest_lasertest.nav.move_base.settings; the rest keep ROS's defaults.
     navigation: tuple[tuple[str, str, float | bool], ...] = ()
+    # Its Nav2 parameters as a ROS 2 params file sets them: (node, dotted name, value), read by
+    # pytest_lasertest.nav.nav2.params; and the Nav2 release imitated.
+    nav2: tuple[tuple[str, str, ParameterValue], ...] = ()
+    nav2_release: str = "jazzy"
 
     @property
     def braking_distance(self) -> float:

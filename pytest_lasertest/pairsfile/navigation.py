@@ -1,11 +1,14 @@
 """`navigation:` parameters: a robot's navigation.yaml, and a pairs file's overrides of it.
 
 Both are written the same way, one mapping per section of `pytest_lasertest.nav.move_base.settings`,
-with ROS's parameter names:
+with ROS's parameter names; a pairs file's may also name a Nav2 params file and release
+(`nav2_params.py`):
 
     navigation:
       move_base: {back_up_recovery: true}
       dwa: {min_vel_x: -0.1}
+      nav2: nav2_params.yaml
+      nav2_version: jazzy
 """
 
 from __future__ import annotations
@@ -18,6 +21,7 @@ from pytest_lasertest.nav.move_base.settings import (
     clashes,
     parameter_types,
 )
+from pytest_lasertest.pairsfile.nav2_params import NAV2_KEYS
 
 # A speed that may be negative: DWA's least forward speed reverses below zero.
 MAY_BE_NEGATIVE = frozenset({"min_vel_x"})
@@ -45,9 +49,11 @@ def read_navigation(node: SpecNode, under: tuple[Parameter, ...] = ()) -> tuple[
     """The parameters a `navigation:` mapping sets, each checked against its section and its
     limits, and all of them, set over `under` (the robot's), checked together."""
     types = parameter_types()
-    sections = node.mapping(types, what="navigation sections")
+    sections = node.mapping((*types, *NAV2_KEYS), what="navigation sections")
     read: list[tuple[Parameter, SpecNode]] = []
     for section, values in sections.items():
+        if section in NAV2_KEYS:
+            continue  # Nav2's, read by read_nav2
         known = types[section]
         for name, value in values.mapping(known, what=f"{section} parameters").items():
             read.append(((section, name, _value(value, known[name], section)), value))

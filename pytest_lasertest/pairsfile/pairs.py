@@ -19,6 +19,7 @@ from pytest_lasertest.pairsfile.catalogue import Catalogue, load_catalogue
 from pytest_lasertest.pairsfile.constraints import Constraint, read_constraints
 from pytest_lasertest.pairsfile.controller import ControllerChoice, read_controller
 from pytest_lasertest.pairsfile.described import DESCRIPTION_KEYS, is_described, read_described
+from pytest_lasertest.pairsfile.nav2_params import read_nav2
 from pytest_lasertest.pairsfile.navigation import read_navigation
 from pytest_lasertest.pairsfile.placements import PinnedPlacement, read_placements
 from pytest_lasertest.pairsfile.robot import read_robot
@@ -115,6 +116,7 @@ def load_pairs_file(path: Path) -> PairsFile:
         # The file's own parameters come after the robot's, and so win.
         overrides = read_navigation(sections["navigation"], robot.navigation)
         robot = dataclasses.replace(robot, navigation=robot.navigation + overrides)
+        robot = read_nav2(sections["navigation"].entries(what="navigation sections"), robot)
     world = read_world(sections["world"], robot)
     pairs = _read_pairs(sections["pairs"], load_catalogue(), robot.laser_mount)
     _check_scans(sections["pairs"], pairs, scanned_time(world, robot))

@@ -10,6 +10,7 @@ from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import Robot, pad_footprint
 from pytest_lasertest.model.scanner_limits import ProfileError, check_mount
 from pytest_lasertest.pairsfile.bundled import ROBOT_FILE, bundled_robots
+from pytest_lasertest.pairsfile.nav2_params import read_nav2
 from pytest_lasertest.pairsfile.navigation import load_navigation_file
 
 REQUIRED_KEYS = (
@@ -27,6 +28,8 @@ OPTIONAL_KEYS = (
     "nominal_turn_rate",
     "reaction_time",
     "navigation",
+    "nav2",
+    "nav2_version",
 )
 ROBOT_KEYS = REQUIRED_KEYS + OPTIONAL_KEYS
 # move_base's default controller_frequency is 20 Hz: a scan reaches the wheels one period later.
@@ -102,7 +105,7 @@ def load_robot_file(path: Path) -> Robot:
     top_speed = fields["max_linear_velocity"].number_in(SPEED)
     top_turn_rate = fields["max_angular_velocity"].number_in(TURN_RATE)
     padding = _optional(fields, "footprint_padding", PADDING, 0.0)
-    return Robot(
+    robot = Robot(
         name=fields["name"].text(),
         laser_mount=_mount(fields["laser_mount"]),
         footprint=pad_footprint(_footprint(fields["footprint"]), padding),
@@ -115,6 +118,7 @@ def load_robot_file(path: Path) -> Robot:
         reaction_time=_optional(fields, "reaction_time", REACTION_TIME, DEFAULT_REACTION_TIME),
         navigation=load_navigation_file(fields["navigation"]) if "navigation" in fields else (),
     )
+    return read_nav2(fields, robot)
 
 
 def _mount(node: SpecNode) -> Pose3D:

@@ -29,6 +29,10 @@ from pytest_lasertest.plugin.session import LaserSession
 HOOK = "pytest_lasertest_make_controller"
 
 
+class UnreadParametersWarning(UserWarning):
+    """A Nav2 params file sets parameters the Nav2 imitation does not read."""
+
+
 class PairFile(pytest.File):
     """A pairs file; a file that cannot be used is one collection error naming file and line."""
 
@@ -40,6 +44,8 @@ class PairFile(pytest.File):
             controller = self._controller(spec)
         except SpecError as error:
             raise self.CollectError(str(error)) from None
+        if controller.name == "nav2" and spec.robot.nav2:
+            self._note_unread(spec)
         items: list[pytest.Item] = []
         for pair in spec.pairs:
             if same_sensing(pair.baseline.profile, pair.candidate.profile):
@@ -63,6 +69,21 @@ class PairFile(pytest.File):
             ),
             *placement_items(self, spec, pair, controller),
         ]
+
+    def _note_unread(self, spec: PairsFile) -> None:
+        """Say once, as a warning pytest lists at the end, which of the Nav2 parameters the
+        robot's params file sets the imitation does not read."""
+        from pytest_lasertest.nav.nav2.params import configure
+
+        unread = configure(spec.robot.nav2, spec.robot.nav2_release).unmodelled
+        if unread:
+            lines = "\n  ".join(unread)
+            self.warn(
+                UnreadParametersWarning(
+                    f"the Nav2 imitation does not read these parameters of the params file "
+                    f"(README, The navigation stacks, says what it imitates):\n  {lines}"
+                )
+            )
 
     def _note_unchanged(self, pair: Pair) -> None:
         LaserSession.of(self.config).unchanged.add(

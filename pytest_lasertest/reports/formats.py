@@ -83,7 +83,22 @@ def run_line(side: str, label: str, run: Run | None) -> str:
     if run is None:
         return f"  {side:<10} {label}: not driven (the candidate passed)"
     outcome = "; ".join(verdict.describe() for _, verdict in run.verdicts.named())
-    return f"  {side:<10} {label}: {'passed' if run.passed else 'FAILED'}: {outcome}"
+    line = f"  {side:<10} {label}: {'passed' if run.passed else 'FAILED'}: {outcome}"
+    return line + "".join(f"\n  {'':<10} {text}" for text in activity_lines(run.activity))
+
+
+# How many of a run's events a report shows; the rest are counted.
+SHOWN_EVENTS = 8
+
+
+def activity_lines(activity: tuple[tuple[float, str], ...]) -> list[str]:
+    """`stack did: Spin at t = 12.10 s, Wait at t = 22.10 s`: what the controller said it did
+    in a run, if anything."""
+    if not activity:
+        return []
+    shown = [f"{what} at t = {time:.2f} s" for time, what in activity[:SHOWN_EVENTS]]
+    more = len(activity) - SHOWN_EVENTS
+    return ["stack did: " + ", ".join(shown) + (f", and {more} more" if more > 0 else "")]
 
 
 def pose_text(x: float, y: float, yaw: float) -> str:

@@ -91,6 +91,7 @@ class Guard:
         self._spent = 0.0  # s of wall-clock time inside the controller
         self._alarm = Alarm()
         self._observe: Any = None
+        self._controller: object = None
         self._rng = _global_rng_states()
         self.goal_tolerance: float | None = None  # m, the controller's own, if it has one
 
@@ -118,6 +119,7 @@ class Guard:
             )
         _check_arity(observe)
         self._observe = observe
+        self._controller = controller
         self.goal_tolerance = _goal_tolerance(
             self._call("the factory", 0.0, getattr, controller, "goal_tolerance", None)
         )
@@ -126,6 +128,12 @@ class Guard:
         """The controller's command for this scan: two finite floats."""
         command = self._call("observe", time, self._observe, scan, odometry, time)
         return _command(command, time)
+
+    def activity(self, time: float) -> tuple[tuple[float, str], ...]:
+        """What the controller says it did, at the end of the drive at `time` s: (s, what)
+        pairs, or none if it has no `activity`."""
+        value = self._call("activity", time, getattr, self._controller, "activity", None)
+        return _activity(value, time)
 
     def _call(self, call: str, time: float, function: Any, *arguments: object) -> Any:
         """`function(*arguments)` within the controller's time; what it raises, a fault."""
@@ -335,3 +343,29 @@ def _goal_tolerance(value: object) -> float | None:
             )
         )
     return metres
+
+
+def _activity(value: object, time: float) -> tuple[tuple[float, str], ...]:
+    """A controller's activity: none, or (finite time s, text) pairs."""
+    if value is None:
+        return ()
+    pairs = list(value) if isinstance(value, list | tuple) else None
+    if pairs is None or not all(_is_event(pair) for pair in pairs):
+        raise Faulted(
+            ControllerFault(
+                "activity",
+                time,
+                f"is {_shown(value)}, not a list of (time in s, text) pairs",
+                "make activity a list of (time, what) pairs, e.g. [(12.5, 'Spin')], or leave "
+                "it out",
+            )
+        )
+    return tuple((float(when), str(what)) for when, what in pairs)
+
+
+def _is_event(pair: object) -> bool:
+    if not (isinstance(pair, tuple | list) and len(pair) == 2):
+        return False
+    when, what = pair
+    number = isinstance(when, numbers.Real) and not isinstance(when, bool)
+    return number and math.isfinite(float(when)) and isinstance(what, str)

@@ -74,6 +74,8 @@ class Run:
     wheels: FloatArray  # (T, 2) the wheel speeds that drove it [left, right], rad/s
     scans: int  # how many scans the controller was given
     verdicts: Verdicts
+    # What the controller said it did, (s, what): a navigation stack's recoveries, say.
+    activity: tuple[tuple[float, str], ...] = ()
 
     @property
     def passed(self) -> bool:
@@ -157,6 +159,7 @@ class _Runner:
             if self.referee.update(time, x, y, clearance, touching):
                 break
         table = np.array(rows).reshape(-1, 8)
+        ended = float(table[-1, 0]) if len(table) else 0.0
         return Run(
             scenario,
             table[:, 0],
@@ -165,6 +168,7 @@ class _Runner:
             table[:, 6:8],
             scans,
             self.referee.verdicts(),
+            self.controller.activity(ended),
         )
 
     def _scans_at(self, step: int) -> int:

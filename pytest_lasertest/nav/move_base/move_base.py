@@ -34,7 +34,7 @@ from pytest_lasertest.model.geometry import FloatArray, Point2D
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.nav.move_base.costmap import LETHAL, Costmap, CostmapSettings, InflationCost
 from pytest_lasertest.nav.move_base.dwa import LocalPlanner, Surroundings
-from pytest_lasertest.nav.move_base.navfn import plan_path
+from pytest_lasertest.nav.move_base.navfn import windowed_plan
 from pytest_lasertest.nav.move_base.recovery import (
     BackUp,
     ClearCostmap,
@@ -246,25 +246,9 @@ class MoveBase:
         both widened by planner_margin, or None."""
         goal = self.route[self.goal_index]
         margin = self.settings.move_base.planner_margin
-        corners = np.array([[pose[0], pose[1]], [goal.x, goal.y]])
-        low_x, low_y, _ = self.costmap.cell_of(corners.min(axis=0)[np.newaxis] - margin)
-        high_x, high_y, _ = self.costmap.cell_of(corners.max(axis=0)[np.newaxis] + margin)
-        cells = self.costmap.settings.cells
-        columns = slice(max(int(low_x[0]), 0), min(int(high_x[0]) + 1, cells))
-        rows = slice(max(int(low_y[0]), 0), min(int(high_y[0]) + 1, cells))
-        ends_x, ends_y, inside = self.costmap.cell_of(corners)
-        if not inside.all():
-            return None
-        start = (int(ends_x[0]) - columns.start, int(ends_y[0]) - rows.start)
-        end = (int(ends_x[1]) - columns.start, int(ends_y[1]) - rows.start)
-        resolution = self.costmap.settings.resolution
-        path = plan_path(
-            self.costmap.costs(columns, rows), start, end, self.settings.navfn, resolution
+        return windowed_plan(
+            self.costmap, (pose[0], pose[1]), (goal.x, goal.y), self.settings.navfn, margin
         )
-        if path is None:
-            return None
-        points = self.costmap.centres(path[:, 0] + columns.start, path[:, 1] + rows.start)
-        return np.vstack([points, [[goal.x, goal.y]]])
 
     def _surroundings(self, pose: Pose) -> Surroundings:
         """What DWA scores against: the plan, pruned behind the robot, from its first point in

@@ -42,8 +42,8 @@ from typing import TypeVar
 import numpy as np
 import numpy.typing as npt
 
-from pytest_lasertest.model.geometry import IntArray
-from pytest_lasertest.nav.move_base.costmap import INSCRIBED, UNKNOWN
+from pytest_lasertest.model.geometry import FloatArray, IntArray
+from pytest_lasertest.nav.move_base.costmap import INSCRIBED, UNKNOWN, Costmap
 
 SCALE = 1000  # potential units per navfn cost unit and cell stepped
 UNREACHABLE = int(np.iinfo(np.intp).max)  # the potential of a cell no path reaches
@@ -323,3 +323,32 @@ def plan_path(
     if end is None:
         return None
     return _descend(layout, flat, weights, layout.index(end))
+
+
+def windowed_plan(
+    costmap: Costmap,
+    start: tuple[float, float],
+    goal: tuple[float, float],
+    settings: NavfnSettings,
+    margin: float,
+) -> FloatArray | None:
+    """navfn's plan (K, 2) m from `start` to `goal` (m) on `costmap`, searched in the rectangle
+    spanning both widened by `margin` m, the goal appended; None if there is none, or if
+    either end lies off the costmap."""
+    corners = np.array([start, goal])
+    low_x, low_y, _ = costmap.cell_of(corners.min(axis=0)[np.newaxis] - margin)
+    high_x, high_y, _ = costmap.cell_of(corners.max(axis=0)[np.newaxis] + margin)
+    cells = costmap.settings.cells
+    columns = slice(max(int(low_x[0]), 0), min(int(high_x[0]) + 1, cells))
+    rows = slice(max(int(low_y[0]), 0), min(int(high_y[0]) + 1, cells))
+    ends_x, ends_y, inside = costmap.cell_of(corners)
+    if not inside.all():
+        return None
+    first = (int(ends_x[0]) - columns.start, int(ends_y[0]) - rows.start)
+    last = (int(ends_x[1]) - columns.start, int(ends_y[1]) - rows.start)
+    resolution = costmap.settings.resolution
+    path = plan_path(costmap.costs(columns, rows), first, last, settings, resolution)
+    if path is None:
+        return None
+    points = costmap.centres(path[:, 0] + columns.start, path[:, 1] + rows.start)
+    return np.vstack([points, [goal]])

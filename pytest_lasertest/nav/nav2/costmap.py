@@ -16,6 +16,7 @@ from pytest_lasertest.nav.nav2.obstacle_layer import (
     cleared,
     marked,
 )
+from pytest_lasertest.nav.protocol import LaserScan
 
 
 class Nav2Costmap(Costmap):
@@ -30,6 +31,13 @@ class Nav2Costmap(Costmap):
     ) -> None:
         super().__init__(settings, footprint)
         self.source, self.marking = source, marking
+        self._height = 0.0  # m, the latest scan's plane above the ground
+
+    def update(self, scan: LaserScan, robot: tuple[float, float, float]) -> None:
+        """One scan's update; a scan outside the source's heights neither marks nor clears,
+        and one outside the layer's clears only."""
+        self._height = scan.mount.xyz[2]
+        super().update(scan, robot)
 
     def cost_grid(self) -> CostGrid:
         """The inflated costs as MPPI's critics read them."""
@@ -41,11 +49,15 @@ class Nav2Costmap(Costmap):
         return Window(self.origin[0], self.origin[1], self.settings.resolution, cells, cells)
 
     def _clear(self, laser: tuple[float, float], points: FloatArray) -> None:
+        if not self.source.sees(self._height):
+            return
         freed = cleared(self._geometry(), laser, points, self.source)
         cells = self.settings.cells
         self.grid[freed // cells, freed % cells] = FREE
 
     def _mark(self, laser: tuple[float, float], points: FloatArray) -> None:
+        if not self.source.marks_at(self._height):
+            return
         lethal = marked(self._geometry(), laser, points, self.source, self.marking)
         cells = self.settings.cells
         self.grid[lethal // cells, lethal % cells] = LETHAL

@@ -276,9 +276,7 @@ class Optimizer:
         np.clip(self.wz, -s.wz_max, s.wz_max, out=self.wz)
         changes = _changes(s)
         for step in range(1, s.time_steps):
-            low_vx, high_vx, low_wz, high_wz = _limits(
-                self.vx[step - 1], self.wz[step - 1], changes
-            )
+            low_vx, high_vx, low_wz, high_wz = _limit(self.vx[step - 1], self.wz[step - 1], changes)
             self.vx[step] = min(max(self.vx[step], low_vx), high_vx)
             self.wz[step] = min(max(self.wz[step], low_wz), high_wz)
 
@@ -309,19 +307,30 @@ def _changes(s: MppiSettings) -> Changes:
     return np.float32(step * s.ax_max), np.float32(step * s.ax_min), np.float32(step * s.az_max)
 
 
-def _limits(
-    last_vx: F32 | np.float32, last_wz: F32 | np.float32, changes: Changes
-) -> tuple[F32, F32, F32, F32]:
+def _limits(last_vx: F32, last_wz: F32, changes: Changes) -> tuple[F32, F32, F32, F32]:
     """The bounds [low_vx, high_vx, low_wz, high_wz] on the speeds of the step after speeds
-    `last_vx`, `last_wz` (one sample's or many): ax_min brakes a robot moving forward, and
-    mirrored one that is not (DiffDrive's predict and applyControlSequenceConstraints alike)."""
+    `last_vx`, `last_wz` (B,): ax_min brakes a robot moving forward, and mirrored one that is
+    not (DiffDrive's predict and applyControlSequenceConstraints alike)."""
+    up, down, turn = changes
+    if down == -up:  # symmetric limits, as Nav2's: the same bounds either way
+        low_vx, high_vx = last_vx - up, last_vx + up
+    else:
+        forward = last_vx > 0
+        low_vx = last_vx + np.where(forward, down, -up)
+        high_vx = last_vx + np.where(forward, up, -down)
+    return low_vx, high_vx, last_wz - turn, last_wz + turn
+
+
+def _limit(last_vx: np.float32, last_wz: np.float32, changes: Changes) -> Bounds:
+    """`_limits` of one step's speeds, in float32 scalars."""
     up, down, turn = changes
     forward = last_vx > 0
-    low_vx = last_vx + np.where(forward, down, -up)
-    high_vx = last_vx + np.where(forward, up, -down)
-    low_wz: F32 = np.asarray(last_wz - turn, dtype=np.float32)
-    high_wz: F32 = np.asarray(last_wz + turn, dtype=np.float32)
-    return low_vx, high_vx, low_wz, high_wz
+    low_vx = last_vx + (down if forward else -up)
+    high_vx = last_vx + (up if forward else -down)
+    return low_vx, high_vx, last_wz - turn, last_wz + turn
+
+
+Bounds = tuple[np.float32, np.float32, np.float32, np.float32]
 
 
 def _predict(

@@ -28,76 +28,28 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, Point2D
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import place
-from pytest_lasertest.nav.move_base.costmap import LETHAL, CostmapSettings
-from pytest_lasertest.nav.move_base.navfn import NavfnSettings, plan_path
+from pytest_lasertest.nav.move_base.costmap import LETHAL
+from pytest_lasertest.nav.move_base.navfn import windowed_plan
 from pytest_lasertest.nav.nav2.behaviors import CYCLE_PERIOD, BackUp, Spin, Wait
-from pytest_lasertest.nav.nav2.collision_monitor import (
-    CollisionMonitorSettings,
-    approach,
-    scan_points,
-)
+from pytest_lasertest.nav.nav2.collision_monitor import approach, scan_points
 from pytest_lasertest.nav.nav2.costmap import Nav2Costmap
-from pytest_lasertest.nav.nav2.critics import (
-    ConstraintCritic,
-    CostCritic,
-    GoalCritic,
-    PathAlignCritic,
-    PathAngleCritic,
-    PathFollowCritic,
-    PreferForwardCritic,
-)
-from pytest_lasertest.nav.nav2.mppi import F32, Critic, MppiSettings, Optimizer
-from pytest_lasertest.nav.nav2.obstacle_layer import Marking, ObservationSource
-from pytest_lasertest.nav.nav2.velocity_smoother import SmootherSettings, VelocitySmoother
+from pytest_lasertest.nav.nav2.critics import ConstraintCritic
+from pytest_lasertest.nav.nav2.dwb import DwbController
+from pytest_lasertest.nav.nav2.mppi import F32, Critic, Optimizer
+from pytest_lasertest.nav.nav2.params import configure
+from pytest_lasertest.nav.nav2.settings import CostmapConfig, Nav2Settings
+from pytest_lasertest.nav.nav2.velocity_smoother import VelocitySmoother
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 
 Pose = tuple[float, float, float]  # m, m, rad
 # The default tree's RoundRobin of recoveries (navigate_to_pose_w_replanning_and_recovery.xml).
 RECOVERIES = ("ClearingActions", "Spin", "Wait", "BackUp")
-
-
-@dataclass(frozen=True)
-class Nav2Settings:
-    """Nav2's parameters as Jazzy's nav2_params.yaml sets them."""
-
-    mppi: MppiSettings = field(default_factory=MppiSettings)
-    local_costmap: CostmapSettings = field(
-        default_factory=lambda: CostmapSettings(
-            size=3.0, inflation_radius=0.70, cost_scaling_factor=3.0, update_frequency=5.0
-        )
-    )
-    global_costmap: CostmapSettings = field(
-        default_factory=lambda: CostmapSettings(
-            size=100.0,
-            inflation_radius=0.70,
-            cost_scaling_factor=3.0,
-            update_frequency=1.0,
-            # Nav2 tracks unknown space here, but its static layer has the map's free space
-            # known from the start; the worlds here are open ground, their map all free.
-            track_unknown_space=False,
-        )
-    )
-    source: ObservationSource = field(default_factory=ObservationSource)
-    marking: Marking = Marking.CELLS_PREFILTERED  # jazzy from 1.3.12
-    navfn: NavfnSettings = field(
-        default_factory=lambda: NavfnSettings(allow_unknown=True, default_tolerance=0.5)
-    )
-    controller_frequency: float = 20.0  # Hz
-    replan_period: float = 1.0  # s, the behaviour tree's RateController
-    prune_distance: float = 1.7  # m
-    xy_goal_tolerance: float = 0.25  # m
-    required_movement_radius: float = 0.5  # m
-    movement_time_allowance: float = 10.0  # s
-    number_of_retries: int = 6  # the tree's NavigateRecovery
-    collision_monitor: CollisionMonitorSettings = field(default_factory=CollisionMonitorSettings)
-    smoother: SmootherSettings = field(default_factory=SmootherSettings)
 
 
 class Nav2:
@@ -110,21 +62,23 @@ class Nav2:
         settings: Nav2Settings | None = None,
         seed: int = 0,
     ) -> None:
-        self.settings = settings or Nav2Settings()
+        self.settings = s = settings or configure(robot.nav2, robot.nav2_release).settings
         self.route, self.goal_index = route, 0
-        self.footprint = robot.footprint_array()  # (V, 2) m
-        s = self.settings
+        self.footprint = _footprint(s.local, robot)  # (V, 2) m
         critics: list[Critic] = [
-            ConstraintCritic(s.mppi),
-            CostCritic(),
-            GoalCritic(),
-            PathAlignCritic(),
-            PathFollowCritic(),
-            PathAngleCritic(),
-            PreferForwardCritic(),
+            dataclasses.replace(critic, settings=s.mppi)
+            if isinstance(critic, ConstraintCritic)
+            else critic
+            for critic in s.critics
         ]
-        self.mppi = Optimizer(s.mppi, critics, np.random.default_rng(seed))
-        self.local = Nav2Costmap(s.local_costmap, self.footprint, s.source, s.marking)
+        # FollowPath: MPPI, or DWB if the params file names it.
+        self.controller: Optimizer | DwbController = (
+            DwbController(s.dwb)
+            if s.dwb is not None
+            else Optimizer(s.mppi, critics, np.random.default_rng(seed))
+        )
+        self.local = Nav2Costmap(s.local.costmap, self.footprint, s.local.source, s.marking)
+        self._global_footprint = _footprint(s.global_, robot)
         self.smoother = VelocitySmoother(s.smoother)
         self.goal_tolerance = s.xy_goal_tolerance  # m: the goal oracle judges by it
         self._global: Nav2Costmap | None = None  # made at the first scan, around the route
@@ -133,7 +87,11 @@ class Nav2:
         self._command = (0.0, 0.0)
         self._next = dict.fromkeys(("local", "global", "plan", "cycle", "behavior"), -math.inf)
         self._progress: tuple[float, float, float] | None = None  # x, y (m) and time (s)
-        self.recovered: list[tuple[str, float]] = []  # (name, s): each recovery begun
+        # What the stack did, for the report: (s, what) for each recovery begun, each time the
+        # collision monitor stopped the robot, and the navigation failing.
+        self.activity: list[tuple[float, str]] = []
+        self._held = False  # whether the collision monitor holds the robot
+        self._allowed = (0.0, 0.0)  # the command the collision monitor last let through
         self._behavior: Spin | BackUp | Wait | None = None
         self._robin = 0  # the round robin's next action
         self._retries = 0  # the tree's RecoveryNode retries used
@@ -141,10 +99,23 @@ class Nav2:
         self._follow_retried = False  # FollowPath's RecoveryNode retry used
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
-        """The command of the latest cycle, smoothed, as the collision monitor lets it through."""
-        command = self.smoother.step(self._navigate(scan, odometry, time), time)
+        """The command of the latest cycle, smoothed, as the collision monitor lets it through.
+        The monitor acts on each command the smoother publishes (its cmd_vel_in callback), with
+        the latest scan; between them the robot keeps the last it let through."""
+        command = self._navigate(scan, odometry, time)
+        if not self.smoother.due(time):
+            return self._allowed
+        smoothed = self.smoother.step(command, time)
         monitor = self.settings.collision_monitor
-        return approach(command, scan_points(scan, monitor), self.footprint, monitor)
+        if monitor is None:
+            self._allowed = smoothed
+            return smoothed
+        self._allowed = approach(smoothed, scan_points(scan, monitor), self.footprint, monitor)
+        held = self._allowed == (0.0, 0.0) and smoothed != (0.0, 0.0)
+        if held and not self._held:
+            self.activity.append((time, "the collision monitor stopped the robot"))
+        self._held = held
+        return self._allowed
 
     def _navigate(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
         """The command of the latest cycle; each server on its own clock, the behaviour tree
@@ -153,9 +124,9 @@ class Nav2:
         s = self.settings
         if self._global is None:
             self._global = self._global_costmap(pose)
-        if self._due("local", time, 1.0 / s.local_costmap.update_frequency):
+        if self._due("local", time, 1.0 / s.local.costmap.update_frequency):
             self.local.update(scan, pose)
-        if self._due("global", time, 1.0 / s.global_costmap.update_frequency):
+        if self._due("global", time, 1.0 / s.global_.costmap.update_frequency):
             self.global_costmap.update(scan, pose)
         if self._done():
             return 0.0, 0.0
@@ -176,7 +147,7 @@ class Nav2:
         if self._replan(pose):
             return True
         self.global_costmap.clear_outside(pose[0], pose[1], 0.0)
-        self.recovered.append(("ClearGlobalCostmap-Context", time))
+        self.activity.append((time, "ClearGlobalCostmap-Context"))
         return self._replan(pose)
 
     def _follow_failed(self, pose: Pose, time: float) -> tuple[float, float]:
@@ -185,7 +156,7 @@ class Nav2:
             return self._navigation_failed(pose, time)
         self._follow_retried = True
         self.local.clear_outside(pose[0], pose[1], 0.0)
-        self.recovered.append(("ClearLocalCostmap-Context", time))
+        self.activity.append((time, "ClearLocalCostmap-Context"))
         self._progress = None
         self._command = (0.0, 0.0)
         return self._command
@@ -196,6 +167,7 @@ class Nav2:
         self._command = (0.0, 0.0)
         if self._retries >= self.settings.number_of_retries:
             self.failed = f"navigation failed after {self._retries} recoveries"
+            self.activity.append((time, self.failed))
             return self._command
         self._retries += 1
         self._tried = 0
@@ -205,7 +177,7 @@ class Nav2:
     def _begin_recovery(self, pose: Pose, time: float) -> None:
         """Start the round robin's current action; clearing both costmaps ends at once."""
         name = RECOVERIES[self._robin]
-        self.recovered.append((name, time))
+        self.activity.append((time, name))
         if name == "ClearingActions":
             self.local.clear_outside(pose[0], pose[1], 0.0)
             self.global_costmap.clear_outside(pose[0], pose[1], 0.0)
@@ -237,6 +209,7 @@ class Nav2:
         self._tried += 1
         if self._tried == len(RECOVERIES):
             self.failed = "every recovery failed"
+            self.activity.append((time, self.failed))
             return self._command
         self._begin_recovery(pose, time)
         return self._recover(pose, time) if self._behavior is not None else self._command
@@ -278,10 +251,11 @@ class Nav2:
         s = self.settings
         points = np.array([pose[:2], *((point.x, point.y) for point in self.route)])
         span = float(np.hypot(*(points[:, np.newaxis] - points[np.newaxis]).T).max())  # m
-        reach = s.source.raytrace_max_range + s.global_costmap.inflation_radius + 1.0  # m
-        size = min(s.global_costmap.size, 2.0 * (span + reach))
-        settings = dataclasses.replace(s.global_costmap, size=size)
-        return Nav2Costmap(settings, self.footprint, s.source, s.marking)
+        config = s.global_
+        reach = config.source.raytrace_max_range + config.costmap.inflation_radius + 1.0  # m
+        size = min(config.costmap.size, 2.0 * (span + reach))
+        settings = dataclasses.replace(config.costmap, size=size)
+        return Nav2Costmap(settings, self._global_footprint, config.source, s.marking)
 
     def _due(self, clock: str, time: float, period: float) -> bool:
         if time < self._next[clock]:
@@ -306,7 +280,7 @@ class Nav2:
             return 0.0, 0.0
         path = self._pruned(pose)
         # None: NO_VALID_CONTROL, every sample colliding.
-        return self.mppi.command(pose, speed, path, (goal.x, goal.y), self.local.cost_grid())
+        return self.controller.command(pose, speed, path, (goal.x, goal.y), self.local.cost_grid())
 
     def _next_goal(self) -> None:
         """The next waypoint, navigated to by a fresh run of the tree: its retries, round robin
@@ -331,19 +305,15 @@ class Nav2:
         """NavFn's plan from the robot to the goal on the global costmap; False, the old one
         kept, if none is found."""
         goal = self.route[self.goal_index]
-        costmap = self.global_costmap
-        ends = np.array([[pose[0], pose[1]], [goal.x, goal.y]])
-        x, y, inside = costmap.cell_of(ends)
-        if not inside.all():
-            return False
-        start, end = (int(x[0]), int(y[0])), (int(x[1]), int(y[1]))
-        cells = plan_path(
-            costmap.costs(), start, end, self.settings.navfn, costmap.settings.resolution
+        s = self.settings
+        plan = windowed_plan(
+            self.global_costmap, pose[:2], (goal.x, goal.y), s.navfn, s.planner_margin
         )
-        if cells is None:
+        if plan is None:
             return False
-        points = costmap.centres(cells[:, 0], cells[:, 1])
-        self.plan = np.vstack([points, [[goal.x, goal.y]]])
+        self.plan = plan
+        if isinstance(self.controller, DwbController):
+            self.controller.set_plan()  # the controller server's setPlan, at each new path
         return True
 
     def _pruned(self, pose: Pose) -> F32:
@@ -354,3 +324,10 @@ class Nav2:
         along = np.concatenate([[0.0], np.cumsum(steps)])
         kept: F32 = path[along <= self.settings.prune_distance].astype(np.float32)
         return kept
+
+
+def _footprint(config: CostmapConfig, robot: Robot) -> FloatArray:
+    """The footprint a costmap plans for, (V, 2) m: its own, else the robot's."""
+    if config.footprint is None:
+        return robot.footprint_array()
+    return np.array(config.footprint, dtype=float)

@@ -58,6 +58,23 @@ class ObservationSource:
     raytrace_min_range: float = 0.0  # m
     marking: bool = True
     clearing: bool = True
+    # The source's heights (ObservationBuffer keeps points with min <= z <= max, for marking
+    # and clearing alike), then the layer's, for marking only (updateBounds skips z < min and
+    # z > max; a VoxelLayer's grid also ends at origin_z + z_voxels * z_resolution).
+    min_obstacle_height: float = 0.0  # m
+    max_obstacle_height: float = 2.0  # m
+    layer_min_obstacle_height: float = 0.0  # m
+    layer_max_obstacle_height: float = 2.0  # m
+
+    def sees(self, height: float) -> bool:
+        """Whether a level scan `height` m above the ground enters the source at all."""
+        return self.min_obstacle_height <= height <= self.max_obstacle_height
+
+    def marks_at(self, height: float) -> bool:
+        """Whether the layer marks the points of a level scan `height` m above the ground."""
+        return self.sees(height) and (
+            self.layer_min_obstacle_height <= height <= self.layer_max_obstacle_height
+        )
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,10 @@ class VelocitySmoother:
         self.last: Command = (0.0, 0.0)
         self._next = -math.inf  # s
 
+    def due(self, time: float) -> bool:
+        """Whether the smoother ticks at `time` s (its 20 Hz timer)."""
+        return time >= self._next
+
     def step(self, command: Command, time: float) -> Command:
         """The output at `time` for the latest command."""
         s = self.settings

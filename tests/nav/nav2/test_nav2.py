@@ -37,7 +37,7 @@ def test_a_robot_that_never_moves_goes_through_the_default_trees_recoveries_in_o
         time = step * 0.02
         scan = LaserScan(time, np.full(SCANNER.beam_count, np.inf), meta, SCANNER.pose)
         nav2.observe(scan, standing, time)
-    names = [name for name, _ in nav2.recovered]
+    names = [name for _, name in nav2.activity]
     assert names[:6] == [
         # The progress checker's 10 s: FollowPath's own recovery, then the tree's.
         "ClearLocalCostmap-Context",
@@ -48,7 +48,7 @@ def test_a_robot_that_never_moves_goes_through_the_default_trees_recoveries_in_o
         "Wait",
         "ClearLocalCostmap-Context",
     ]
-    times = [round(time) for _, time in nav2.recovered[:4]]
+    times = [round(time) for time, _ in nav2.activity[:4]]
     assert times == [10, 20, 30, 40]
 
 

@@ -1,0 +1,161 @@
+"""Nav2's parameters as the imitation holds them: Jazzy's nav2_params.yaml by default
+(nav2_bringup/params/nav2_params.yaml at jazzy f4108e5b), and the release whose obstacle layer
+marks the scan (`RELEASES`).
+
+A team's own params file sets them through `params.py`; the robot's footprint stands where the
+file sets neither `footprint` nor `robot_radius`.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from pytest_lasertest.nav.move_base.costmap import CostmapSettings
+from pytest_lasertest.nav.move_base.navfn import NavfnSettings
+from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings
+from pytest_lasertest.nav.nav2.critics import (
+    ConstraintCritic,
+    CostCritic,
+    GoalCritic,
+    PathAlignCritic,
+    PathAngleCritic,
+    PathFollowCritic,
+    PreferForwardCritic,
+)
+from pytest_lasertest.nav.nav2.dwb import DwbSettings
+from pytest_lasertest.nav.nav2.mppi import MppiSettings
+from pytest_lasertest.nav.nav2.obstacle_layer import Marking, ObservationSource
+from pytest_lasertest.nav.nav2.velocity_smoother import SmootherSettings
+
+MppiCritic = (
+    ConstraintCritic
+    | CostCritic
+    | GoalCritic
+    | PathAlignCritic
+    | PathAngleCritic
+    | PathFollowCritic
+    | PreferForwardCritic
+)
+# The critics of Jazzy's nav2_params.yaml we imitate, by the names a params file lists them.
+CRITICS: dict[str, type[MppiCritic]] = {
+    kind.__name__: kind
+    for kind in (
+        ConstraintCritic,
+        CostCritic,
+        GoalCritic,
+        PathAlignCritic,
+        PathFollowCritic,
+        PathAngleCritic,
+        PreferForwardCritic,
+    )
+}
+# How each release's ObstacleLayer decides that a point is near enough to mark (read in
+# navigation2: kilted 71a1d84f; jazzy f4108e5b, release 1.3.13, with #5775 first released in
+# 1.3.11 and #6119 in 1.3.12; humble 3c3db59d6, where #5891 backported #5775 and #6092's
+# pre-filter has not followed).
+RELEASES: dict[str, Marking] = {
+    "kilted": Marking.EUCLIDEAN,
+    "jazzy": Marking.CELLS_PREFILTERED,
+    "humble": Marking.CELLS,
+}
+NEWEST_JAZZY = 13  # 1.3.13, the newest Jazzy release read
+_JAZZY_RELEASE = re.compile(r"1\.3\.(\d+)")
+
+
+def marking_of(release: str) -> Marking | None:
+    """The marking rule of a release (`jazzy`, `kilted`, `humble`, or a Jazzy release number
+    from 1.3.0 to 1.3.13); None for any other."""
+    if release in RELEASES:
+        return RELEASES[release]
+    number = _JAZZY_RELEASE.fullmatch(release)
+    if number is None or int(number.group(1)) > NEWEST_JAZZY:
+        return None
+    patch = int(number.group(1))
+    if patch <= 10:
+        return Marking.EUCLIDEAN
+    return Marking.CELLS if patch == 11 else Marking.CELLS_PREFILTERED
+
+
+def _default_critics() -> tuple[MppiCritic, ...]:
+    return (
+        ConstraintCritic(MppiSettings()),
+        CostCritic(),
+        GoalCritic(),
+        PathAlignCritic(),
+        PathFollowCritic(),
+        PathAngleCritic(),
+        PreferForwardCritic(),
+    )
+
+
+@dataclass(frozen=True)
+class CostmapConfig:
+    """One of Nav2's two costmaps: its window and inflation, its laser source, and the
+    footprint it plans for (None: the robot's)."""
+
+    costmap: CostmapSettings
+    source: ObservationSource = field(default_factory=ObservationSource)
+    footprint: tuple[tuple[float, float], ...] | None = None  # m
+
+
+def _local() -> CostmapConfig:
+    return CostmapConfig(
+        CostmapSettings(
+            size=3.0, inflation_radius=0.70, cost_scaling_factor=3.0, update_frequency=5.0
+        )
+    )
+
+
+def _global() -> CostmapConfig:
+    # Nav2 tracks unknown space here, but its static layer has the map's free space known
+    # from the start; the worlds here are open ground, their map all free.
+    return CostmapConfig(
+        CostmapSettings(
+            size=100.0,
+            inflation_radius=0.70,
+            cost_scaling_factor=3.0,
+            update_frequency=1.0,
+            track_unknown_space=False,
+        )
+    )
+
+
+@dataclass(frozen=True)
+class Nav2Settings:
+    """Nav2's parameters as Jazzy's nav2_params.yaml sets them, and the release imitated."""
+
+    release: str = "jazzy"
+    mppi: MppiSettings = field(default_factory=MppiSettings)
+    # FollowPath: MPPI (Jazzy's default), or DWB (Humble's) when this is set.
+    dwb: DwbSettings | None = None
+    critics: tuple[MppiCritic, ...] = field(default_factory=_default_critics)
+    local: CostmapConfig = field(default_factory=_local)
+    global_: CostmapConfig = field(default_factory=_global)
+    navfn: NavfnSettings = field(
+        default_factory=lambda: NavfnSettings(allow_unknown=True, default_tolerance=0.5)
+    )
+    # Ours, not Nav2's: NavFn searches the rectangle spanning the robot and its goal widened
+    # by this much (as move_base's here), not the whole global costmap; a plan that must
+    # leave it is not found. Nav2's NavFn stops once its wave reaches the robot, so it seldom
+    # looks much further.
+    planner_margin: float = 5.0  # m
+    controller_frequency: float = 20.0  # Hz
+    replan_period: float = 1.0  # s, the behaviour tree's RateController
+    prune_distance: float = 1.7  # m
+    xy_goal_tolerance: float = 0.25  # m
+    required_movement_radius: float = 0.5  # m
+    movement_time_allowance: float = 10.0  # s
+    number_of_retries: int = 6  # the tree's NavigateRecovery
+    collision_monitor: CollisionMonitorSettings | None = field(
+        default_factory=CollisionMonitorSettings
+    )
+    smoother: SmootherSettings = field(default_factory=SmootherSettings)
+
+    @property
+    def marking(self) -> Marking:
+        """The release's marking rule (`release` is checked where it is read)."""
+        marking = marking_of(self.release)
+        if marking is None:
+            raise ValueError(f"no Nav2 release {self.release!r}")
+        return marking

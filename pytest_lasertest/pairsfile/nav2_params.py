@@ -1,0 +1,135 @@
+"""A Nav2 params file, as ROS 2 writes one: each node's parameters under `ros__parameters`,
+nodes perhaps within a namespace (`local_costmap: {local_costmap: {ros__parameters: ...}}`).
+
+Read with the line of every value, handed to `pytest_lasertest.nav.nav2.params` to make Nav2's
+settings, whose problems come back here as errors naming file, line and parameter.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+
+from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.inputs.node import SpecNode, describe, read_root
+from pytest_lasertest.inputs.yamlfile import YamlList, YamlMap
+from pytest_lasertest.model.robot import ParameterValue, Robot
+from pytest_lasertest.nav.nav2.params import Parameter, ParameterProblem, configure
+from pytest_lasertest.nav.nav2.settings import RELEASES, marking_of
+
+PARAMETERS = "ros__parameters"
+RELEASE_FIX = (
+    f"write one of {', '.join(RELEASES)}, or a Jazzy release number from 1.3.0 to 1.3.13 "
+    "(1.3.11 marks by cells without the pre-filter 1.3.12 added)"
+)
+
+
+# The keys that name Nav2's configuration: in a robot file, and in a pairs file's navigation:.
+NAV2_KEYS = ("nav2", "nav2_version")
+
+
+def read_nav2(fields: Mapping[str, SpecNode], robot: Robot) -> Robot:
+    """The robot with the Nav2 params file and release `fields` name, over its own: a params
+    file replaces the robot's whole, as a launch's params_file does."""
+    release = robot.nav2_release
+    if "nav2_version" in fields:
+        release = read_release(fields["nav2_version"])
+    parameters = robot.nav2
+    if "nav2" in fields:
+        parameters = load_nav2_file(fields["nav2"], release)
+    return dataclasses.replace(robot, nav2=parameters, nav2_release=release)
+
+
+def read_release(node: SpecNode) -> str:
+    """`nav2_version:` a release whose marking rule we know."""
+    release = str(node.value) if isinstance(node.value, int | float | str) else ""
+    if marking_of(release) is None:
+        raise node.error(f"{describe(node.value)} is not a Nav2 release we imitate", RELEASE_FIX)
+    return release
+
+
+def load_nav2_file(node: SpecNode, release: str) -> tuple[Parameter, ...]:
+    """The params file `node` names, relative to the file it is written in, checked by making
+    Nav2's settings from it."""
+    path = node.location.path.parent / node.text(what="a path to a Nav2 params file")
+    if not path.is_file():
+        raise node.error(
+            f"{path} does not exist",
+            "give the path of a Nav2 params YAML file (as nav2_bringup's nav2_params.yaml) "
+            "relative to this file",
+        )
+    root = read_root(path, what="Nav2 params file", needs="nodes with ros__parameters")
+    where: dict[tuple[str, str], SpecNode] = {}
+    for name, node_parameters in _nodes(root):
+        for key, value in _flattened(node_parameters, "").items():
+            where[(name, key)] = value
+    parameters = tuple((name, key, _value(value)) for (name, key), value in where.items())
+    try:
+        configure(parameters, release)
+    except ParameterProblem as problem:
+        raise _located(problem, where, root) from None
+    return parameters
+
+
+def _nodes(root: SpecNode) -> list[tuple[str, SpecNode]]:
+    """Each node's `ros__parameters`, by the node's name, its namespace dropped."""
+    found = []
+    for key, child in root.entries(what="nodes").items():
+        entries = child.entries(what=f"{key}'s parameters or nodes")
+        if PARAMETERS in entries:
+            found.append((key, entries[PARAMETERS]))
+            continue
+        # A namespace: each of its entries a node.
+        nested = {name: _node_parameters(inner) for name, inner in entries.items()}
+        if not all(nested.values()):
+            raise child.missing(
+                PARAMETERS,
+                f"write each node's parameters under it: `{key}:` then, indented, "
+                f"`{PARAMETERS}:` and the parameters below (a namespace holds such nodes)",
+            )
+        found += [(name, inner) for name, inner in nested.items() if inner is not None]
+    return found
+
+
+def _node_parameters(node: SpecNode) -> SpecNode | None:
+    """A namespaced node's `ros__parameters`, or None if `node` is no such node."""
+    if not isinstance(node.value, YamlMap):
+        return None
+    return node.entries(what="parameters").get(PARAMETERS)
+
+
+def _flattened(node: SpecNode, prefix: str) -> dict[str, SpecNode]:
+    """A node's parameters by dotted name: nested mappings are names' parts."""
+    flat: dict[str, SpecNode] = {}
+    for key, child in node.entries(what="parameters").items():
+        if isinstance(child.value, YamlMap):
+            flat.update(_flattened(child, f"{prefix}{key}."))
+        else:
+            flat[f"{prefix}{key}"] = child
+    return flat
+
+
+def _value(node: SpecNode) -> ParameterValue:
+    """A parameter's value: a number, true or false, a string, or a list of them."""
+    value = node.value
+    if isinstance(value, YamlList):
+        return tuple(_value(item) for item in node.items(what="values"))
+    if isinstance(value, bool | int | float | str):
+        return value
+    raise node.error(
+        f"a parameter's value is a number, true or false, a string or a list, not "
+        f"{describe(value)}",
+        "write a value, or leave the parameter out to keep Nav2's default",
+    )
+
+
+def _located(
+    problem: ParameterProblem, where: dict[tuple[str, str], SpecNode], root: SpecNode
+) -> SpecError:
+    """The problem at its parameter's line, or at its node's when the parameter is not set."""
+    node = where.get((problem.node, problem.name))
+    if node is None:
+        node = next((n for (name, _), n in where.items() if name == problem.node), root)
+        field = f"{problem.node}.{problem.name}"
+        return SpecError(node.location, field, f"{problem.name}: {problem.problem}", problem.fix)
+    return node.error(problem.problem, problem.fix)

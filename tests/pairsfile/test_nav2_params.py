@@ -1,0 +1,276 @@
+"""A team's Nav2 params file, named by a pairs file's `navigation: {nav2: ...}`: read in the ROS 2
+format, its values set on the Nav2 imitation, what it does not read listed, and every problem
+one error naming the params file, its line, the parameter and the fix."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.nav.nav2.obstacle_layer import Marking
+from pytest_lasertest.nav.nav2.params import configure
+from pytest_lasertest.pairsfile.pairs import load_pairs_file
+from tests.helpers import REPO
+from tests.helpers.runs import Case
+
+BRINGUP = REPO / "tests" / "data" / "nav2" / "nav2_params.yaml"
+PAIRS = """\
+robot: husky
+controller: nav2
+navigation:
+  nav2: team.nav2.yaml
+  nav2_version: jazzy
+world: {start: {x: 0, y: 0}, goal: {x: 3, y: 0}, time_limit: 30}
+pairs:
+  longer: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
+"""
+# Line numbers matter: the cases below break one line of it.
+TEAM = """\
+controller_server:
+  ros__parameters:
+    controller_frequency: 10.0
+    controller_plugins: ["FollowPath"]
+    FollowPath:
+      plugin: "nav2_mppi_controller::MPPIController"
+      batch_size: 1000
+      critics: ["ConstraintCritic", "CostCritic", "GoalCritic"]
+      CostCritic:
+        cost_weight: 4.0
+local_costmap:
+  local_costmap:
+    ros__parameters:
+      width: 4
+      height: 4
+      footprint: "[[0.55, 0.45], [0.55, -0.45], [-0.55, -0.45], [-0.55, 0.45]]"
+      plugins: ["obstacle_layer", "inflation_layer"]
+      inflation_layer: {plugin: "nav2_costmap_2d::InflationLayer", inflation_radius: 0.8}
+      obstacle_layer:
+        plugin: "nav2_costmap_2d::ObstacleLayer"
+        observation_sources: scan
+        scan: {data_type: "LaserScan", obstacle_max_range: 2.0, inf_is_valid: true}
+planner_server:
+  ros__parameters:
+    GridBased: {plugin: "nav2_navfn_planner/NavfnPlanner", use_astar: false}
+amcl:
+  ros__parameters: {alpha1: 0.2}
+"""
+
+
+def load(tmp_path: Path, team: str = TEAM, pairs: str = PAIRS) -> object:
+    (tmp_path / "team.nav2.yaml").write_text(team)
+    (tmp_path / "gate.lasertest.yaml").write_text(pairs)
+    return load_pairs_file(tmp_path / "gate.lasertest.yaml")
+
+
+def test_a_teams_params_file_sets_the_nav2_imitation_and_jazzy_keeps_the_rest(
+    tmp_path: Path,
+) -> None:
+    robot = load(tmp_path).robot  # type: ignore[attr-defined]
+    config = configure(robot.nav2, robot.nav2_release)
+    s = config.settings
+    assert s.controller_frequency == 10.0
+    assert s.mppi.batch_size == 1000
+    assert s.mppi.time_steps == 56
+    assert [type(critic).__name__ for critic in s.critics] == [
+        "ConstraintCritic",
+        "CostCritic",
+        "GoalCritic",
+    ]
+    assert s.critics[1].weight == 4.0
+    assert s.local.costmap.size == 4.0
+    assert s.local.costmap.inflation_radius == 0.8
+    assert s.local.costmap.inf_is_valid
+    assert s.local.source.obstacle_max_range == 2.0
+    # footprint_padding's default 0.01 m pads it, as costmap_2d does.
+    assert s.local.footprint == ((0.56, 0.46), (0.56, -0.46), (-0.56, -0.46), (-0.56, 0.46))
+    assert s.global_.footprint is None  # not set: the robot's own
+    assert s.marking is Marking.CELLS_PREFILTERED
+    assert config.unmodelled == ("amcl: every parameter (1)",)
+
+
+def test_nav2_version_picks_the_obstacle_layers_marking_rule(tmp_path: Path) -> None:
+    for release, marking in [
+        ("jazzy", Marking.CELLS_PREFILTERED),
+        ("kilted", Marking.EUCLIDEAN),
+        ("humble", Marking.CELLS),
+        ('"1.3.10"', Marking.EUCLIDEAN),
+        ('"1.3.11"', Marking.CELLS),
+        ('"1.3.12"', Marking.CELLS_PREFILTERED),
+    ]:
+        pairs = PAIRS.replace("nav2_version: jazzy", f"nav2_version: {release}")
+        robot = load(tmp_path, pairs=pairs).robot  # type: ignore[attr-defined]
+        assert configure(robot.nav2, robot.nav2_release).settings.marking is marking, release
+
+
+def test_nav2_bringups_own_params_file_sets_jazzys_values() -> None:
+    from pytest_lasertest.inputs.errors import Location
+    from pytest_lasertest.inputs.node import SpecNode
+    from pytest_lasertest.pairsfile.nav2_params import load_nav2_file
+
+    node = SpecNode(BRINGUP.name, Location(BRINGUP.parent / "gate.lasertest.yaml", 1), "nav2")
+    config = configure(load_nav2_file(node, "jazzy"))
+    s = config.settings
+    assert s.local.costmap.size == 3.0
+    assert s.local.costmap.resolution == 0.05
+    # robot_radius 0.22 m: costmap_2d's 16-point circle.
+    assert len(s.local.footprint or ()) == 16
+    # The voxel layer's column is 16 x 0.05 m: a scan above 0.8 m marks nothing locally.
+    assert s.local.source.layer_max_obstacle_height == pytest.approx(0.8)
+    assert s.global_.source.layer_max_obstacle_height == 2.0
+    assert s.collision_monitor is not None
+    assert s.collision_monitor.min_points == 6
+    assert s.smoother.max_velocity == (0.5, 2.0)
+    assert "amcl: every parameter (37)" in config.unmodelled
+    assert any(line.startswith("controller_server: ") for line in config.unmodelled)
+
+
+CASES = {
+    "a word where a number belongs": Case(
+        "controller_frequency: 10.0",
+        "controller_frequency: fast",
+        3,
+        "controller_server.ros__parameters.controller_frequency",
+        "is a number, not 'fast'",
+        "write a number",
+    ),
+    "a zero rate": Case(
+        "controller_frequency: 10.0",
+        "controller_frequency: 0",
+        3,
+        "controller_server.ros__parameters.controller_frequency",
+        "must be above zero, not 0.0",
+        "write a positive controller_frequency",
+    ),
+    "a batch no controller could run": Case(
+        "batch_size: 1000",
+        "batch_size: 2000000",
+        7,
+        "controller_server.ros__parameters.FollowPath.batch_size",
+        "2e+06 is beyond any Nav2 configuration (at most 100000)",
+        "check the figure",
+    ),
+    "a controller the imitation does not have": Case(
+        "nav2_mppi_controller::MPPIController",
+        "nav2_regulated_pure_pursuit_controller::RegulatedPurePursuitController",
+        6,
+        "controller_server.ros__parameters.FollowPath.plugin",
+        "RegulatedPurePursuitController is a controller the Nav2 imitation does not have",
+        "use nav2_mppi_controller::MPPIController",
+    ),
+    "a critic the imitation does not have": Case(
+        '"GoalCritic"]',
+        '"ObstaclesCritic"]',
+        8,
+        "controller_server.ros__parameters.FollowPath.critics",
+        "ObstaclesCritic is a critic the MPPI imitation does not have",
+        "leave it out, or use those it has",
+    ),
+    "a rectangular rolling window": Case(
+        "height: 4",
+        "height: 5",
+        15,
+        "local_costmap.local_costmap.ros__parameters.height",
+        "differs from width",
+        "write the same width and height",
+    ),
+    "a footprint that is not a polygon": Case(
+        '"[[0.55, 0.45], [0.55, -0.45], [-0.55, -0.45], [-0.55, 0.45]]"',
+        '"[[0.55, 0.45], [0.55]]"',
+        16,
+        "local_costmap.local_costmap.ros__parameters.footprint",
+        "is not a polygon of three or more [x, y] points",
+        'write e.g. "[[0.5, 0.4]',
+    ),
+    "two observation sources": Case(
+        "observation_sources: scan",
+        "observation_sources: scan rear_scan",
+        21,
+        "local_costmap.local_costmap.ros__parameters.obstacle_layer.observation_sources",
+        "names 2 sources; the imitation feeds its layer one laser scan",
+        "name one LaserScan source",
+    ),
+    "a point cloud source": Case(
+        'data_type: "LaserScan"',
+        'data_type: "PointCloud2"',
+        22,
+        "local_costmap.local_costmap.ros__parameters.obstacle_layer.scan.data_type",
+        "must be LaserScan",
+        "write LaserScan",
+    ),
+    "A* asked of NavFn": Case(
+        "use_astar: false",
+        "use_astar: true",
+        25,
+        "planner_server.ros__parameters.GridBased.use_astar",
+        "A* is not imitated",
+        "write false",
+    ),
+    "a node without ros__parameters": Case(
+        "amcl:\n  ros__parameters: {alpha1: 0.2}",
+        "amcl:\n  parameters: {alpha1: 0.2}",
+        26,
+        "amcl.ros__parameters",
+        "ros__parameters is missing",
+        "write each node's parameters under it: `amcl:` then, indented, `ros__parameters:`",
+    ),
+    "a parameter with no value": Case(
+        "batch_size: 1000",
+        "batch_size:",
+        7,
+        "controller_server.ros__parameters.FollowPath.batch_size",
+        "a parameter's value is a number, true or false, a string or a list, not",
+        "leave the parameter out to keep Nav2's default",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", CASES.values(), ids=CASES.keys())
+def test_a_broken_params_file_is_one_error_naming_its_line_parameter_and_fix(
+    tmp_path: Path, case: Case
+) -> None:
+    assert case.old in TEAM
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, team=TEAM.replace(case.old, case.new, 1))
+    error = raised.value
+    assert error.location.path.name == "team.nav2.yaml"
+    assert (error.location.line, error.field) == (case.line, case.field)
+    assert case.problem in error.problem
+    assert case.fix in error.fix
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "line", "problem"),
+    [
+        ("nav2: team.nav2.yaml", "nav2: missing.yaml", 4, "missing.yaml does not exist"),
+        ("nav2_version: jazzy", "nav2_version: iron", 5, "'iron' is not a Nav2 release"),
+        ("nav2_version: jazzy", 'nav2_version: "1.3.14"', 5, "'1.3.14' is not a Nav2 release"),
+    ],
+)
+def test_a_pairs_file_naming_a_missing_params_file_or_an_unknown_release_is_an_error_at_its_line(
+    tmp_path: Path, old: str, new: str, line: int, problem: str
+) -> None:
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, pairs=PAIRS.replace(old, new))
+    assert raised.value.location.line == line
+    assert problem in raised.value.problem
+
+
+def test_a_pairs_file_naming_nav2_bringups_params_file_collects_runs_and_lists_what_is_unread(
+    pytester: pytest.Pytester,
+) -> None:
+    shutil.copy(BRINGUP, pytester.path / "nav2_params.yaml")
+    pairs = PAIRS.replace("team.nav2.yaml", "nav2_params.yaml").replace(
+        "hokuyo_ust_20lx", "rplidar_a1"
+    )
+    (pytester.path / "gate.lasertest.yaml").write_text(pairs)
+    result = pytester.runpytest("-k", "no-obstacle", "-rA", "--laser-seed=1")
+    result.assert_outcomes(passed=1, deselected=result.parseoutcomes()["deselected"])
+    result.stdout.fnmatch_lines(
+        [
+            "*UnreadParametersWarning: the Nav2 imitation does not read these parameters*",
+            "    amcl: every parameter (37)",
+        ]
+    )
