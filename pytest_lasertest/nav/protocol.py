@@ -8,7 +8,11 @@ raises, answers anything else, or takes more wall-clock time than 5 s plus the s
 driven, fails the drive. A controller may also have a `goal_tolerance` (m), how near the goal
 its own goal checker counts it arrived: the goal oracle then judges the run by it instead of
 the rules' (`sim/oracles.py`), so that a stack that stops where its goal checker says is not
-failed for stopping there. And it may have an `activity`, a list of (time s, text) pairs of
+failed for stopping there. It may have a `control_frequency` (Hz): its own clocks run faster
+than the scans come (Nav2's controller server runs at 20 Hz whatever the scanner's rate), and
+the simulator then calls `observe` between scans too, at that rate, with the last scan again
+(the same object, its stamp unchanged), as a ROS node's timers fire between messages. And it
+may have an `activity`, a list of (time s, text) pairs of
 what it did that a reader of a failure should know (a recovery begun, a safety stop): each
 failing run's report lists them, e.g. `stack did: Spin at t = 12.10 s`.
 """

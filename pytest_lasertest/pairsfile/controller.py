@@ -45,6 +45,7 @@ class ControllerChoice:
     name: str  # as the user wrote it, or `module:qualname` for a hook's factory
     source: str  # for reports: where the choice was made
     factory: ControllerFactory
+    stack: str = ""  # for reports: what the stack runs, where we know (Nav2's release, say)
 
 
 def read_controller(node: SpecNode) -> ControllerChoice:

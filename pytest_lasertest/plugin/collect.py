@@ -9,6 +9,8 @@ the default.
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 from pytest_lasertest.inputs.errors import Location, SpecError
@@ -44,8 +46,8 @@ class PairFile(pytest.File):
             controller = self._controller(spec)
         except SpecError as error:
             raise self.CollectError(str(error)) from None
-        if controller.name == "nav2" and spec.robot.nav2:
-            self._note_unread(spec)
+        if controller.name == "nav2":
+            controller = self._nav2(spec, controller)
         items: list[pytest.Item] = []
         for pair in spec.pairs:
             if same_sensing(pair.baseline.profile, pair.candidate.profile):
@@ -70,12 +72,18 @@ class PairFile(pytest.File):
             *placement_items(self, spec, pair, controller),
         ]
 
-    def _note_unread(self, spec: PairsFile) -> None:
-        """Say once, as a warning pytest lists at the end, which of the Nav2 parameters the
-        robot's params file sets the imitation does not read."""
+    def _nav2(self, spec: PairsFile, controller: ControllerChoice) -> ControllerChoice:
+        """Nav2's choice, saying what it runs; and, once, as a warning pytest lists at the
+        end, which of the parameters the robot's params file sets the imitation does not
+        read."""
         from pytest_lasertest.nav.nav2.params import configure
+        from pytest_lasertest.nav.nav2.settings import describe
 
-        unread = configure(spec.robot.nav2, spec.robot.nav2_release).unmodelled
+        config = configure(spec.robot.nav2, spec.robot.nav2_release)
+        self._note_unread(config.unmodelled)
+        return dataclasses.replace(controller, stack=describe(config.settings))
+
+    def _note_unread(self, unread: tuple[str, ...]) -> None:
         if unread:
             lines = "\n  ".join(unread)
             self.warn(

@@ -81,8 +81,10 @@ def _frame_lines(frames: tuple[Frame, ...]) -> list[str]:
 
 
 def controller_line(controller: ControllerChoice) -> str:
-    """`  controller move_base (the default)`."""
-    return f"  controller {controller.name} ({controller.source})"
+    """`  controller move_base (the default)`, and what the stack runs where we know it:
+    `  controller nav2 (from gate.lasertest.yaml:3): Nav2 jazzy: NavFn, MPPI, ...`."""
+    stack = f": {controller.stack}" if controller.stack else ""
+    return f"  controller {controller.name} ({controller.source}){stack}"
 
 
 def drive_properties(drives: PairDrive) -> list[tuple[str, object]]:

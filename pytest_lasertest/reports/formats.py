@@ -96,9 +96,22 @@ def activity_lines(activity: tuple[tuple[float, str], ...]) -> list[str]:
     in a run, if anything."""
     if not activity:
         return []
-    shown = [f"{what} at t = {time:.2f} s" for time, what in activity[:SHOWN_EVENTS]]
-    more = len(activity) - SHOWN_EVENTS
+    runs: list[list[tuple[float, str]]] = []
+    for event in activity:  # the same event again and again is one entry
+        if runs and runs[-1][0][1] == event[1]:
+            runs[-1].append(event)
+        else:
+            runs.append([event])
+    shown = [_run_text(run) for run in runs[:SHOWN_EVENTS]]
+    more = len(runs) - SHOWN_EVENTS
     return ["stack did: " + ", ".join(shown) + (f", and {more} more" if more > 0 else "")]
+
+
+def _run_text(run: list[tuple[float, str]]) -> str:
+    (first, what), last = run[0], run[-1][0]
+    if len(run) == 1:
+        return f"{what} at t = {first:.2f} s"
+    return f"{what} {len(run)} times from t = {first:.2f} s to {last:.2f} s"
 
 
 def pose_text(x: float, y: float, yaw: float) -> str:

@@ -94,6 +94,7 @@ class Guard:
         self._controller: object = None
         self._rng = _global_rng_states()
         self.goal_tolerance: float | None = None  # m, the controller's own, if it has one
+        self.control_frequency: float | None = None  # Hz, its own clock's, if it has one
 
     def __enter__(self) -> Guard:
         self._alarm.install()
@@ -122,6 +123,9 @@ class Guard:
         self._controller = controller
         self.goal_tolerance = _goal_tolerance(
             self._call("the factory", 0.0, getattr, controller, "goal_tolerance", None)
+        )
+        self.control_frequency = _control_frequency(
+            self._call("the factory", 0.0, getattr, controller, "control_frequency", None)
         )
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
@@ -369,3 +373,22 @@ def _is_event(pair: object) -> bool:
     when, what = pair
     number = isinstance(when, numbers.Real) and not isinstance(when, bool)
     return number and math.isfinite(float(when)) and isinstance(what, str)
+
+
+def _control_frequency(value: object) -> float | None:
+    """A controller's control_frequency: none, or a positive finite number of hertz."""
+    if value is None:
+        return None
+    hertz = float(value) if isinstance(value, numbers.Real) and not isinstance(value, bool) else 0.0
+    if not 0.0 < hertz < math.inf:
+        raise Faulted(
+            ControllerFault(
+                "the factory",
+                0.0,
+                f"returned a controller whose control_frequency is {_shown(value)}, not a "
+                "positive number of hertz",
+                "set control_frequency to the rate (Hz) its own clocks want to be called at "
+                "between scans, or leave it out",
+            )
+        )
+    return hertz

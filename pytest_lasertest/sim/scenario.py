@@ -135,6 +135,8 @@ class _Runner:
         self.referee = Referee(rules, start, scenario.route, scenario.time_step)
         self.lidar = FlatLidar(scenario.profile, scenario.obstacles)
         self.meta = scenario.profile.to_laserscan_meta()
+        self._latest: LaserScan | None = None  # the last scan given, for calls between scans
+        self._next_tick = 0.0  # s, when the controller's own clock next wants a call
 
     def run(self) -> Run:
         scenario, world = self.scenario, self.world
@@ -146,9 +148,12 @@ class _Runner:
         for step in range(steps):
             time = step * scenario.time_step
             measured = Twist(*world.base_twist(yaw))
+            ticks = self._tick_due(time)
             if self._scans_at(step) > scans:
                 command = Twist(*self._observe(scans, time, pose, measured))
                 scans += 1
+            elif ticks and self._latest is not None:
+                command = Twist(*self._call(self._latest, time, pose, measured))
             left, right = self.drive.wheel_speeds(command, measured, scenario.time_step)
             world.step(left, right)
             time += scenario.time_step
@@ -171,6 +176,16 @@ class _Runner:
             self.controller.activity(ended),
         )
 
+    def _tick_due(self, time: float) -> bool:
+        """Whether the controller's own clock (its control_frequency, if it has one) wants a
+        call at `time` s; its ticks fall at whole periods from the start."""
+        frequency = self.controller.control_frequency
+        if frequency is None or time + 1e-9 < self._next_tick:
+            return False
+        while self._next_tick <= time + 1e-9:
+            self._next_tick += 1.0 / frequency
+        return True
+
     def _scans_at(self, step: int) -> int:
         """How many scans the scanner has taken by the start of this step."""
         scenario = self.scenario
@@ -191,7 +206,14 @@ class _Runner:
             return noisy(profile, ranges, np.random.default_rng((seed, index)))
 
         ranges = cast if self.scenario.caster == "flat" else cast()
-        scan = CastOnRead(time, ranges, self.meta, profile.pose)
+        self._latest = CastOnRead(time, ranges, self.meta, profile.pose)
+        return self._call(self._latest, time, pose, measured)
+
+    def _call(
+        self, scan: LaserScan, time: float, pose: FloatArray, measured: Twist
+    ) -> tuple[float, float]:
+        """The controller's command at `time` s, the robot at `pose`, with `scan`: the one just
+        taken, or, between scans, the last again (its stamp tells it apart)."""
         x, y, yaw = pose.tolist()
         odometry = Odometry(x, y, yaw, measured.linear, measured.angular)
         return self.controller.observe(scan, odometry, time)

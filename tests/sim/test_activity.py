@@ -11,7 +11,7 @@ from pytest_lasertest.model.geometry import Point2D, Pose2D
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 from pytest_lasertest.pairsfile import load_pairs_file
-from pytest_lasertest.reports.formats import run_line
+from pytest_lasertest.reports.formats import activity_lines, run_line
 from pytest_lasertest.sim.scenario import ControllerError, Run, Scenario, run_scenario
 from tests.helpers import EXAMPLES
 
@@ -47,10 +47,15 @@ def test_a_controllers_activity_is_carried_on_its_run_and_listed_in_its_report()
     assert [what for _, what in run.activity] == ["Wait", "Wait", "Wait"]
     assert [round(time) for time, _ in run.activity] == [1, 2, 3]
     report = run_line("candidate", "sick_lms111", run)
-    assert report.splitlines()[1].split() == [
-        "stack", "did:", "Wait", "at", "t", "=", "1.00", "s,", "Wait", "at", "t", "=", "2.00",
-        "s,", "Wait", "at", "t", "=", "3.00", "s",
-    ]  # fmt: skip
+    # The same event again and again is one entry.
+    assert report.splitlines()[1].strip() == "stack did: Wait 3 times from t = 1.00 s to 3.00 s"
+
+
+def test_a_report_lists_different_events_in_order_and_counts_those_past_eight() -> None:
+    activity = tuple((float(time), name) for time, name in enumerate(["Spin", "Wait"] * 5))
+    (line,) = activity_lines(activity)
+    assert line.startswith("stack did: Spin at t = 0.00 s, Wait at t = 1.00 s, Spin at t = 2.00 s")
+    assert line.endswith("Wait at t = 7.00 s, and 2 more")
 
 
 def test_a_run_whose_controller_says_nothing_has_no_activity_line() -> None:

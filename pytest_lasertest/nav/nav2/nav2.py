@@ -92,6 +92,10 @@ class Nav2:
         self.activity: list[tuple[float, str]] = []
         self._held = False  # whether the collision monitor holds the robot
         self._allowed = (0.0, 0.0)  # the command the collision monitor last let through
+        self._stamp = -math.inf  # s, the stamp of the last scan the costmaps were offered
+        # The simulator calls between scans at this rate: the controller server's and the
+        # smoother's clocks.
+        self.control_frequency = max(s.controller_frequency, s.smoother.smoothing_frequency)
         self._behavior: Spin | BackUp | Wait | None = None
         self._robin = 0  # the round robin's next action
         self._retries = 0  # the tree's RecoveryNode retries used
@@ -124,9 +128,12 @@ class Nav2:
         s = self.settings
         if self._global is None:
             self._global = self._global_costmap(pose)
-        if self._due("local", time, 1.0 / s.local.costmap.update_frequency):
+        # A costmap takes a scan once, where the robot was when it was taken (tf at its
+        # stamp); between scans only the controller's clocks run.
+        fresh, self._stamp = scan.stamp != self._stamp, scan.stamp
+        if fresh and self._due("local", time, 1.0 / s.local.costmap.update_frequency):
             self.local.update(scan, pose)
-        if self._due("global", time, 1.0 / s.global_.costmap.update_frequency):
+        if fresh and self._due("global", time, 1.0 / s.global_.costmap.update_frequency):
             self.global_costmap.update(scan, pose)
         if self._done():
             return 0.0, 0.0

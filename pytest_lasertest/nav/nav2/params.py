@@ -57,7 +57,19 @@ POSITIVE = frozenset(
     }
 )
 # Lower limits and decelerations, negative by nature.
-MAY_BE_NEGATIVE = frozenset({"vx_min", "ax_min", "ay_min", "min_velocity", "max_decel"})
+MAY_BE_NEGATIVE = frozenset(
+    {
+        "vx_min",
+        "ax_min",
+        "ay_min",
+        "min_velocity",
+        "max_decel",
+        "min_vel_x",
+        "decel_lim_x",
+        "decel_lim_theta",
+        "lookahead_time",
+    }
+)
 # Past these a figure is a typo, and the cycle would take seconds and gigabytes.
 LARGEST = {"batch_size": 100_000, "time_steps": 1_000, "iteration_count": 100}
 MPPI = "nav2_mppi_controller::MPPIController"
@@ -238,10 +250,8 @@ def _controller_server(node: _Node, settings: Nav2Settings) -> Nav2Settings:
         )
     if node.plugin("FollowPath", (MPPI, DWB), "controller") == DWB:
         settings = _dwb(node, settings)
-    elif node.text("FollowPath.motion_model", "DiffDrive") != "DiffDrive":
-        raise node.problem(
-            "FollowPath.motion_model", "the robots here are differential drives", "write DiffDrive"
-        )
+    else:
+        settings = _mppi(node, settings)
     progress = node.names("progress_checker_plugins", ("progress_checker",))[0]
     node.plugin(progress, ("nav2_controller::SimpleProgressChecker",), "progress checker")
     goal = node.names("goal_checker_plugins", ("goal_checker",))[0]
@@ -249,9 +259,6 @@ def _controller_server(node: _Node, settings: Nav2Settings) -> Nav2Settings:
     return dataclasses.replace(
         settings,
         controller_frequency=node.number("controller_frequency", settings.controller_frequency),
-        mppi=node.fields("FollowPath.", settings.mppi),
-        critics=_critics(node, settings.critics),
-        prune_distance=node.number("FollowPath.prune_distance", settings.prune_distance),
         required_movement_radius=node.number(
             f"{progress}.required_movement_radius", settings.required_movement_radius
         ),
@@ -259,6 +266,20 @@ def _controller_server(node: _Node, settings: Nav2Settings) -> Nav2Settings:
             f"{progress}.movement_time_allowance", settings.movement_time_allowance
         ),
         xy_goal_tolerance=node.number(f"{goal}.xy_goal_tolerance", settings.xy_goal_tolerance),
+    )
+
+
+def _mppi(node: _Node, settings: Nav2Settings) -> Nav2Settings:
+    """MPPI as FollowPath: the optimizer's parameters, its critics and theirs."""
+    if node.text("FollowPath.motion_model", "DiffDrive") != "DiffDrive":
+        raise node.problem(
+            "FollowPath.motion_model", "the robots here are differential drives", "write DiffDrive"
+        )
+    return dataclasses.replace(
+        settings,
+        mppi=node.fields("FollowPath.", settings.mppi),
+        critics=_critics(node, settings.critics),
+        prune_distance=node.number("FollowPath.prune_distance", settings.prune_distance),
     )
 
 
@@ -528,6 +549,8 @@ def _collision_monitor(node: _Node, settings: Nav2Settings) -> Nav2Settings:
         raise node.problem(
             "observation_sources", "the imitation's monitor reads one scan", "name one source"
         )
+    if not node.flag(f"{sources[0]}.enabled", True):
+        return dataclasses.replace(settings, collision_monitor=None)  # it reads nothing
     monitor = node.fields(f"{sources[0]}.", monitor)
     node.text(f"{sources[0]}.type", "scan")
     node.text(f"{sources[0]}.topic", "")

@@ -159,3 +159,15 @@ class Nav2Settings:
         if marking is None:
             raise ValueError(f"no Nav2 release {self.release!r}")
         return marking
+
+
+def describe(settings: Nav2Settings) -> str:
+    """`Nav2 jazzy: NavFn, MPPI, collision monitor 1.2 s`: what the imitation runs."""
+    follow = "MPPI" if settings.dwb is None else "DWB"
+    monitor = settings.collision_monitor
+    guard = (
+        "no collision monitor"
+        if monitor is None
+        else (f"collision monitor {monitor.time_before_collision:g} s")
+    )
+    return f"Nav2 {settings.release}: NavFn, {follow}, {guard}"
