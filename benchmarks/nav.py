@@ -27,6 +27,7 @@ from pytest_lasertest.model.geometry import Point2D
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.nav.move_base import MoveBase
 from pytest_lasertest.nav.nav2.nav2 import Nav2
+from pytest_lasertest.nav.nav2.settings import Nav2Settings
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Scenario, run_scenario
 
@@ -51,10 +52,11 @@ class TimedMoveBase(MoveBase):
 
 
 class TimedNav2(Nav2):
-    """Nav2, timing each local costmap update and each MPPI command it makes."""
+    """Nav2 with Jazzy's nav2_params.yaml (MPPI), timing each local costmap update and each
+    MPPI command it makes."""
 
     def __init__(self, robot: Robot, route: tuple[Point2D, ...]) -> None:
-        super().__init__(robot, route)
+        super().__init__(robot, route, Nav2Settings())
         self.updates: list[float] = []  # s
         self.commands: list[float] = []  # s
         self.local.update = _timed(self.local.update, self.updates)  # type: ignore[method-assign]

@@ -1,9 +1,9 @@
 """How fast a robot run simulates, against bare PyBullet stepping, measured side by side.
 
 Each robot run drives the Husky with the paper's 720-beam, 50 Hz scanner and a controller (the
-Husky's move_base by default, Jazzy's Nav2, or the reactive reference) for 30 s of simulated
-time, in an empty world, past one obstacle beside its route (as a placement item drives) or
-past four.
+Husky's move_base by default, Nav2 with Jazzy's nav2_params.yaml, or the reactive reference)
+for 30 s of simulated time, in an empty world, past one obstacle beside its route (as a
+placement item drives) or past four.
 Right after each run, the same world (robot, ground, obstacles) is stepped bare through the
 wheel speeds the run drove: the same physics, with no scans, no controller and no oracles. That
 is the floor a run cannot beat. (Stepping wheels held at one speed instead costs PyBullet about
@@ -25,6 +25,7 @@ from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D
 from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
 from pytest_lasertest.nav.move_base import MoveBase
 from pytest_lasertest.nav.nav2.nav2 import Nav2
+from pytest_lasertest.nav.nav2.settings import Nav2Settings
 from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.pairsfile import load_pairs_file
@@ -37,7 +38,8 @@ SCANNER = next(pair for pair in PAPER.pairs if pair.name == "distance").baseline
 SIMULATED = 30.0  # s per run
 CONTROLLERS: dict[str, ControllerFactory] = {
     "move_base": MoveBase,
-    "nav2": Nav2,
+    # Jazzy's nav2_params.yaml (MPPI), whatever the robot's own Nav2 file says.
+    "nav2": lambda robot, route: Nav2(robot, route, Nav2Settings()),
     "reactive": ReactiveController,
 }
 START = Pose2D(0.0, 0.0, 0.0)

@@ -8,11 +8,15 @@ raises, answers anything else, or takes more wall-clock time than 5 s plus the s
 driven, fails the drive. A controller may also have a `goal_tolerance` (m), how near the goal
 its own goal checker counts it arrived: the goal oracle then judges the run by it instead of
 the rules' (`sim/oracles.py`), so that a stack that stops where its goal checker says is not
-failed for stopping there. It may have a `control_frequency` (Hz): its own clocks run faster
-than the scans come (Nav2's controller server runs at 20 Hz whatever the scanner's rate), and
-the simulator then calls `observe` between scans too, at that rate, with the last scan again
-(the same object, its stamp unchanged), as a ROS node's timers fire between messages. And it
-may have an `activity`, a list of (time s, text) pairs of
+failed for stopping there.
+
+It may have a `stuck_window` (s): how long it may make no progress while it still tries by its
+own logic (Nav2's progress checker waits 10 s before a recovery); the stuck oracle then waits
+that long, if longer than its own window. It may have a `control_frequency` (Hz): its own
+clocks run faster than the scans come (Nav2's controller server runs at 20 Hz whatever the
+scanner's rate), and the simulator then calls `observe` between scans too, at that rate, with
+the last scan again (the same object, its stamp unchanged), as a ROS node's timers fire
+between messages. And it may have an `activity`, a list of (time s, text) pairs of
 what it did that a reader of a failure should know (a recovery begun, a safety stop): each
 failing run's report lists them, e.g. `stack did: Spin at t = 12.10 s`.
 """

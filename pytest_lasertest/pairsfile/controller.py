@@ -28,7 +28,7 @@ from pytest_lasertest.inputs.node import SpecNode
 from pytest_lasertest.nav.protocol import ControllerFactory
 
 # The controller of a pairs file that names none (and whose conftest hooks choose none).
-DEFAULT_CONTROLLER = "move_base"
+DEFAULT_CONTROLLER = "nav2"
 ENTRY_POINT_GROUP = "lasertest.controllers"
 _NAME = r"[A-Za-z_]\w*(?:\.[A-Za-z_]\w*)*"
 _REFERENCE = re.compile(rf"(?P<module>{_NAME}):(?P<attribute>{_NAME})\Z")

@@ -14,7 +14,8 @@ from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.inputs.node import SpecNode, describe, read_root
 from pytest_lasertest.inputs.yamlfile import YamlList, YamlMap
 from pytest_lasertest.model.robot import ParameterValue, Robot
-from pytest_lasertest.nav.nav2.params import Parameter, ParameterProblem, configure
+from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
+from pytest_lasertest.nav.nav2.params import Parameter, configure
 from pytest_lasertest.nav.nav2.settings import RELEASES, marking_of
 
 PARAMETERS = "ros__parameters"

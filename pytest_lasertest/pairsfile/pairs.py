@@ -96,6 +96,8 @@ class PairsFile:
     constraints: tuple[Constraint, ...] = ()
     # The file's `controller:`; None leaves the choice to conftest hooks, then the default.
     controller: ControllerChoice | None = None
+    # The move_base parameters its own `navigation:` sets (over the robot's).
+    move_base_overrides: tuple[tuple[str, str, float | bool], ...] = ()
 
 
 def load_pairs_file(path: Path) -> PairsFile:
@@ -112,6 +114,7 @@ def load_pairs_file(path: Path) -> PairsFile:
                 key, "a pairs file needs robot, world and pairs; see the example in the README"
             )
     robot = read_robot(sections["robot"])
+    overrides: tuple[tuple[str, str, float | bool], ...] = ()
     if "navigation" in sections:
         # The file's own parameters come after the robot's, and so win.
         overrides = read_navigation(sections["navigation"], robot.navigation)
@@ -128,6 +131,7 @@ def load_pairs_file(path: Path) -> PairsFile:
         settings=_read_settings(sections.get("settings")),
         constraints=read_constraints(sections["constraints"]) if "constraints" in sections else (),
         controller=read_controller(sections["controller"]) if "controller" in sections else None,
+        move_base_overrides=overrides,
     )
 
 

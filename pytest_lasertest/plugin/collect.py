@@ -81,6 +81,15 @@ class PairFile(pytest.File):
 
         config = configure(spec.robot.nav2, spec.robot.nav2_release)
         self._note_unread(config.unmodelled)
+        if spec.move_base_overrides:
+            sections = sorted({section for section, _, _ in spec.move_base_overrides})
+            self.warn(
+                UnreadParametersWarning(
+                    f"navigation: sets move_base parameters ({', '.join(sections)}), but the "
+                    "robots drive Nav2, which does not read them: write `controller: move_base` "
+                    "to drive move_base, or give Nav2's in `navigation: {nav2: FILE}`"
+                )
+            )
         return dataclasses.replace(controller, stack=describe(config.settings))
 
     def _note_unread(self, unread: tuple[str, ...]) -> None:

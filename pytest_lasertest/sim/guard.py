@@ -95,6 +95,7 @@ class Guard:
         self._rng = _global_rng_states()
         self.goal_tolerance: float | None = None  # m, the controller's own, if it has one
         self.control_frequency: float | None = None  # Hz, its own clock's, if it has one
+        self.stuck_window: float | None = None  # s, its own patience, if it has one
 
     def __enter__(self) -> Guard:
         self._alarm.install()
@@ -124,8 +125,17 @@ class Guard:
         self.goal_tolerance = _goal_tolerance(
             self._call("the factory", 0.0, getattr, controller, "goal_tolerance", None)
         )
-        self.control_frequency = _control_frequency(
-            self._call("the factory", 0.0, getattr, controller, "control_frequency", None)
+        self.control_frequency = _positive(
+            self._call("the factory", 0.0, getattr, controller, "control_frequency", None),
+            "control_frequency",
+            "hertz",
+            "the rate (Hz) its own clocks want to be called at between scans",
+        )
+        self.stuck_window = _positive(
+            self._call("the factory", 0.0, getattr, controller, "stuck_window", None),
+            "stuck_window",
+            "seconds",
+            "how long (s) it may make no progress while still trying, by its own logic",
         )
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
@@ -375,20 +385,21 @@ def _is_event(pair: object) -> bool:
     return number and math.isfinite(float(when)) and isinstance(what, str)
 
 
-def _control_frequency(value: object) -> float | None:
-    """A controller's control_frequency: none, or a positive finite number of hertz."""
+def _positive(value: object, name: str, unit: str, meaning: str) -> float | None:
+    """An optional figure of a controller's: none, or a positive finite number."""
     if value is None:
         return None
-    hertz = float(value) if isinstance(value, numbers.Real) and not isinstance(value, bool) else 0.0
-    if not 0.0 < hertz < math.inf:
+    figure = (
+        float(value) if isinstance(value, numbers.Real) and not isinstance(value, bool) else 0.0
+    )
+    if not 0.0 < figure < math.inf:
         raise Faulted(
             ControllerFault(
                 "the factory",
                 0.0,
-                f"returned a controller whose control_frequency is {_shown(value)}, not a "
-                "positive number of hertz",
-                "set control_frequency to the rate (Hz) its own clocks want to be called at "
-                "between scans, or leave it out",
+                f"returned a controller whose {name} is {_shown(value)}, not a positive number "
+                f"of {unit}",
+                f"set {name} to {meaning}, or leave it out",
             )
         )
-    return hertz
+    return figure

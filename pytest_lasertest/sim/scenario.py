@@ -132,6 +132,9 @@ class _Runner:
         rules = scenario.rules
         if controller.goal_tolerance is not None:
             rules = dataclasses.replace(rules, goal_tolerance=controller.goal_tolerance)
+        if controller.stuck_window is not None:
+            window = max(rules.stuck_window, controller.stuck_window)
+            rules = dataclasses.replace(rules, stuck_window=window)
         self.referee = Referee(rules, start, scenario.route, scenario.time_step)
         self.lidar = FlatLidar(scenario.profile, scenario.obstacles)
         self.meta = scenario.profile.to_laserscan_meta()

@@ -76,7 +76,9 @@ def test_a_repro_keeps_the_model_overrides_as_written_and_drops_settings_and_oth
     original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
     pair = pair_named(original, "size")
     written = yaml.safe_load(repro_yaml(original, pair, pinned_for(pair), tmp_path / "r.yaml", ()))
-    assert list(written) == ["robot", "world", "pairs"]
+    # The controller too: a replay drives as the original did.
+    assert list(written) == ["robot", "world", "controller", "pairs"]
+    assert written["controller"] == "move_base"
     assert list(written["pairs"]) == ["size"]
     assert written["pairs"]["size"]["candidate"] == {
         "model": "clearpath_lms1xx_gazebo",

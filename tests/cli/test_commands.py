@@ -151,9 +151,10 @@ def test_explain_prints_the_hits_as_runs_of_beams_and_says_the_misser_still_miss
     assert main(["explain", str(size_pairs), "size", "candidate-misses-0"]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].startswith("size candidate-misses-0: box ")
-    # The gate times the path by the baseline's obstacle-free run: move_base's first command,
-    # at its first cycle, takes the robot off the start by 0.14 s.
-    assert lines[2].startswith("  baseline (detector) at the anchor, t = 0.14 s, pose (")
+    # The gate times the path by the baseline's obstacle-free run: Nav2 (the default) takes
+    # the robot off the start by 1.16 s (its first plan, MPPI from a sequence of zeros, the
+    # smoother's ramp).
+    assert lines[2].startswith("  baseline (detector) at the anchor, t = 1.16 s, pose (")
     assert lines[2].endswith(": reads it")
     assert re.fullmatch(r"    beams? \d+(-\d+)? \(angles? [-.\d]+ rad\): [\d.]+ m", lines[3])
     assert lines[-2].startswith("  candidate (misser) last scan up to until, t = ")

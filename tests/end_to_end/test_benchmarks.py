@@ -66,6 +66,18 @@ def test_the_navigation_benchmark_runs_and_ends_with_its_figures() -> None:
     assert re.match(r"\d+ costmap updates: [\d.]+ ms; \d+ DWA commands: ", lines[0])
 
 
+def test_both_benchmarks_time_nav2_with_mppi_and_the_robot_drives() -> None:
+    lines = printed("benchmarks/nav.py", "--runs", "1", "--controller", "nav2")
+    assert NAV_LINE.fullmatch(lines[-1])
+    # MPPI at 20 Hz for the whole 30 s run; the local costmap at 5 Hz.
+    assert re.match(r"1[45]\d costmap updates: [\d.]+ ms; 500 MPPI commands: ", lines[0])
+    lines = printed(
+        "benchmarks/sim.py", "--runs", "1", "--memory-runs", "1", "--controller", "nav2"
+    )
+    assert SIM_LINE.fullmatch(lines[-1])
+    assert "goal not reached: 15." in lines[0]  # 15 m along in 30 s, at MPPI's 0.5 m/s
+
+
 FAULT_LINE = re.compile(
     r"mutants killed: gate \d+ of \d+, random \d+ of \d+; "
     r"killed cells per 1000 simulations: gate [\d.]+, random [\d.]+"

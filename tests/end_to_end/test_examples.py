@@ -1,7 +1,9 @@
 """The bundled examples: the paper's downgrades fail on the attribute each one changed, and with
 the Husky's move_base the paper's findings reappear: the 5 m robot's phantom arc, and the thin
-pole the 16-beam robot drives into and the 32-beam robot stops short of; and the team's gap
-follower under examples/own_controller takes its robots to the goal."""
+pole the 16-beam robot drives into and the 32-beam robot stops short of; under Nav2, the
+default, the A200 example's items drive both robots and their reports name the stack, the
+oracle and what the stack did; and the team's gap follower under examples/own_controller takes
+its robots to the goal."""
 
 from __future__ import annotations
 
@@ -22,7 +24,7 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
     commit_everything(pytester.path)
     # As CI runs the README's main job: the ci profile, on two workers.
     result = pytester.runpytest_subprocess(
-        "examples", "-rA", "--laser-seed=1", "--laser-profile=ci", "-n", "2"
+        "examples", "-rA", "--laser-seed=1", "--laser-profile=ci", "-n", "2", "--junitxml=out.xml"
     )
     assert "errors" not in result.parseoutcomes()
     result.stdout.fnmatch_lines(
@@ -48,16 +50,37 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
         # +-1.57 rad passes. A regression both scanners read: the difference is in what the
         # navigation stack makes of the narrower scan.
         "examples/turning.lasertest.yaml::blind_spot_turning[avoid-0]",
-        # Boxes and a pole 0.460 m high on the last leg: below the TiM571's raised scan plane
-        # (0.540 m), so the candidate drives into each; the LMS111 reads them and passes.
+        # Under Nav2 with Clearpath's A200 parameters (the default controller): an obstacle
+        # below the TiM571's raised scan plane (0.540 m) the candidate drives into; and
+        # obstacles near the route where both robots collide, or are held by the collision
+        # monitor and stay stuck through the recoveries (pre-existing).
         *(
-            f"examples/husky.lasertest.yaml::lms111_to_tim571_raised[candidate-misses-{index}]"
-            for index in range(3)
+            f"examples/husky.lasertest.yaml::lms111_to_tim571_raised[{name}]"
+            for name in (
+                "avoid-0",
+                "avoid-1",
+                "avoid-2",
+                "baseline-misses-0",
+                "candidate-misses-1",
+                "candidate-misses-2",
+            )
         ),
+        "examples/husky.lasertest.yaml::ust10_to_ust20[avoid-0]",
+        "examples/husky.lasertest.yaml::ust10_to_ust20[avoid-1]",
+        # The RPLIDAR A1 in place of the Hokuyo: at a pole beside the route the 5.5 Hz
+        # scanner's robot gets stuck and the Hokuyo's passes (a regression); at a thin pole
+        # the A1 misses, it collides, and the Hokuyo's robot is held by the collision monitor.
+        "examples/nav2/a200.lasertest.yaml::ust10lx_to_rplidar_a1[avoid-0]",
+        "examples/nav2/a200.lasertest.yaml::ust10lx_to_rplidar_a1[candidate-misses-0]",
     }
     passed = {line.split()[1] for line in result.stdout.lines if line.startswith("PASSED ")}
     assert passed >= {
         "examples/husky.lasertest.yaml::ust10_to_ust20[coverage]",
+        # Nav2 takes both robots to the goal without obstacles: with the RPLIDAR's 5.5 Hz too,
+        # its controller running at 20 Hz between scans; and with the cropped range under
+        # 1.3.11, slowed by phantom cells (tests/nav/nav2/test_releases.py counts them).
+        "examples/nav2/a200.lasertest.yaml::ust10lx_to_rplidar_a1[no-obstacle]",
+        "examples/nav2/cropped_range.lasertest.yaml::cropped_range[no-obstacle]",
         # The team's own controller takes both robots to the goal in the empty world.
         "examples/own_controller/gap_follower.lasertest.yaml::size[no-obstacle]",
         "examples/paper.lasertest.yaml::blind_spot[no-obstacle]",
@@ -72,12 +95,33 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
             "  candidate  clearpath_lms1xx_gazebo: FAILED: *; stuck at t = * s: *",
         ]
     )
+    # Every item of the A200 example drives under Nav2, and a failure's report names the stack,
+    # the oracle and what the stack did.
+    assert {
+        controller
+        for item, controller in controllers(pytester).items()
+        if "a200" in item and "coverage" not in item
+    } == {"nav2"}
+    result.stdout.fnmatch_lines(
+        [
+            "*_ ust10lx_to_rplidar_a1[[]candidate-misses-0[]] _*",
+            "*: pre-existing: the baseline fails here too",
+            "  pair       ust10lx_to_rplidar_a1 (examples/nav2/a200.lasertest.yaml:18)",
+            "  controller nav2 (from examples/nav2/a200.lasertest.yaml:5): "
+            "Nav2 jazzy: NavFn, DWB, collision monitor 0.3 s",
+            "  oracle     collision: collided at t = * s *",
+            "  baseline   hokuyo_ust_10lx: FAILED: *; stuck at t = * s: *",
+            "             stack did: the collision monitor stopped the robot * times from t = *"
+            "ClearLocalCostmap-Context at t = *ClearingActions at t = *",
+            "  candidate  rplidar_a1: FAILED: collided at t = * s; *",
+        ]
+    )
     result.stdout.fnmatch_lines(
         [
             "*_ size[[]candidate-misses-1[]] _*",
             "the candidate fails (collision and goal) near witness candidate-misses-1: "
             "pre-existing: *",
-            "  controller move_base (the default)",
+            "  controller move_base (from examples/paper.lasertest.yaml:22)",
             "  oracle     collision: collided at t = * s *",
             "  witness    cylinder of radius 0.025 m at *",
             "  minimal    cylinder of radius 0.025 m at *",

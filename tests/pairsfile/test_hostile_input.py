@@ -52,7 +52,10 @@ pairs:
 """
 # The paper's size pair on the 6 m route, driven by a robot whose DWA tops out at 0.3 m/s while
 # the Husky's nominal speed is 0.5 m/s.
-SLOW = GATE.replace("dwa: {max_vel_x: 0.5}", "dwa: {max_vel_x: 0.3, max_trans_vel: 0.3}")
+SLOW = (
+    GATE.replace("dwa: {max_vel_x: 0.5}", "dwa: {max_vel_x: 0.3, max_trans_vel: 0.3}")
+    + "controller: move_base\n"
+)
 # A controller of a team's own that crawls straight ahead at 0.2 m/s.
 CRAWLER = """\
 class Crawler:

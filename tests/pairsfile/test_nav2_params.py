@@ -274,3 +274,50 @@ def test_a_pairs_file_naming_nav2_bringups_params_file_collects_runs_and_lists_w
             "    amcl: every parameter (37)",
         ]
     )
+
+
+def test_the_bundled_husky_runs_clearpaths_a200_parameters_with_dwb(tmp_path: Path) -> None:
+    pairs = PAIRS.replace("  nav2: team.nav2.yaml\n", "")
+    robot = load(tmp_path, pairs=pairs).robot  # type: ignore[attr-defined]
+    config = configure(robot.nav2, robot.nav2_release)
+    s = config.settings
+    assert s.dwb is not None
+    assert (s.dwb.max_vel_x, s.dwb.acc_lim_x, s.dwb.slowing_factor) == (1.0, 0.5, 12.0)
+    assert s.dwb.path_align_scale == 32.0
+    assert s.xy_goal_tolerance == 0.3
+    assert s.local.costmap.resolution == 0.06
+    assert s.local.costmap.size == 5.0
+    assert s.global_.costmap.size == 20.0
+    assert s.collision_monitor is not None
+    assert (s.collision_monitor.time_before_collision, s.collision_monitor.min_points) == (0.3, 12)
+    assert s.smoother.max_accel == (0.5, 0.5)
+    # Jazzy reads progress_checker_plugins; Clearpath's file writes Humble's singular name.
+    assert "progress_checker_plugin" in config.unmodelled[0]
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "line", "problem"),
+    [
+        (
+            '"RotateToGoal", ',
+            '"RotateToGoal", "Twirling", ',
+            50,
+            "Twirling is a critic the DWB imitation does not have",
+        ),
+        (
+            "RotateToGoal.lookahead_time: -1.0",
+            "RotateToGoal.lookahead_time: 1.0",
+            60,
+            "only a negative lookahead_time",
+        ),
+    ],
+)
+def test_a_broken_dwb_section_is_an_error_at_its_line(
+    tmp_path: Path, old: str, new: str, line: int, problem: str
+) -> None:
+    husky = (REPO / "pytest_lasertest" / "robots" / "husky" / "nav2.yaml").read_text()
+    assert old in husky
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, team=husky.replace(old, new))
+    assert raised.value.location.line == line
+    assert problem in raised.value.problem

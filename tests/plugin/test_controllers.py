@@ -187,7 +187,7 @@ def test_a_conftest_hook_drives_the_pairs_files_below_it_and_none_returned_leave
         [f"  controller conftest:StandStill (from the {HOOK} hook)", "*goal not reached*"]
     )
     assert controllers(pytester) == {
-        "gate.lasertest.yaml::size[no-obstacle]": "move_base",
+        "gate.lasertest.yaml::size[no-obstacle]": "nav2",
         "stood.gate.lasertest.yaml::size[no-obstacle]": "conftest:StandStill",
     }
 

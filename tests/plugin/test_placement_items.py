@@ -29,8 +29,8 @@ def test_the_sparser_scanner_drives_into_its_witness_and_the_denser_one_stops_sh
         [
             "the candidate fails (collision and goal) near witness candidate-misses-1: "
             "pre-existing: the baseline fails here too",
-            "  pair       size (paper.lasertest.yaml:40)",
-            "  controller move_base (the default)",
+            "  pair       size (paper.lasertest.yaml:41)",
+            "  controller move_base (from paper.lasertest.yaml:22)",
             "  oracle     collision: collided at t = * s (margin *-* mm)",
             "  oracle     goal: goal not reached: * m away at best (margin -* mm)",
             "  witness    cylinder of radius 0.025 m at * m high",

@@ -1,5 +1,5 @@
-"""A controller's own goal tolerance: the goal oracle judges the run by it, and a tolerance that
-is not a positive number of metres fails the drive, named."""
+"""A controller's own goal tolerance and stuck window: the oracles judge the run by them, and
+one that is not a positive number fails the drive, named."""
 
 from __future__ import annotations
 
@@ -51,3 +51,37 @@ def test_a_goal_tolerance_that_is_not_a_positive_number_of_metres_fails_the_driv
 ) -> None:
     with pytest.raises(ControllerError, match="goal_tolerance"):
         drive(tolerance)
+
+
+class Pauses:
+    """Stands for the first 15 s, then drives to the goal; declares `stuck_window`."""
+
+    def __init__(self, window: object) -> None:
+        self.stuck_window = window
+
+    def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
+        return (0.0, 0.0) if time < 15.0 else (0.5, 0.0)
+
+
+def pause(window: object) -> bool:
+    """Whether the stuck oracle passes the run of a Pauses declaring `window`."""
+
+    def make(robot: Robot, route: tuple[Point2D, ...]) -> Pauses:
+        return Pauses(window)
+
+    scenario = Scenario(PAPER.robot, PROFILE, (), Pose2D(0.0, 0.0, 0.0), GOAL, 25.0, seed=0)
+    return run_scenario(scenario, make).verdicts.stuck.passed
+
+
+def test_a_controller_that_still_tries_for_20_s_is_not_judged_stuck_within_them() -> None:
+    assert pause(20.0)
+    assert not pause(None)  # the rules' 10 s
+    assert not pause(5.0)  # never shorter than the rules'
+
+
+@pytest.mark.parametrize("window", [0.0, -1.0, math.inf, math.nan, "long", False])
+def test_a_stuck_window_that_is_not_a_positive_number_of_seconds_fails_the_drive(
+    window: object,
+) -> None:
+    with pytest.raises(ControllerError, match="stuck_window"):
+        pause(window)

@@ -1,27 +1,29 @@
-"""Nav2 as Jazzy's nav2_bringup runs it (nav2_params.yaml and the default behaviour tree,
-navigate_to_pose_w_replanning_and_recovery.xml, at jazzy f4108e5b): being built.
+"""Nav2 as nav2_bringup runs it (nav2_params.yaml and the default behaviour tree,
+navigate_to_pose_w_replanning_and_recovery.xml, at jazzy f4108e5b), with the parameters of a
+params file (`params.py`; Jazzy's values where it sets none).
 
-Scan by scan it does what Nav2's servers do on their clocks:
+Scan by scan, and between scans at its own clocks' rate (`control_frequency`), it does what
+Nav2's servers do on their clocks:
 
-- the local costmap (a 3 m rolling window, 5 Hz) and the global costmap (1 Hz) take the latest
-  scan through Nav2's obstacle layer;
+- the local costmap (Jazzy's: a 3 m rolling window, 5 Hz) and the global costmap (1 Hz) take
+  each new scan through Nav2's obstacle layer, marking by the release's rule;
 - every second the tree's ComputePathToPose plans again with NavFn (tolerance 0.5 m, unknown
   space allowed), once more after clearing the global costmap if it finds no plan;
-- the controller server (20 Hz) runs MPPI on the plan pruned as MPPI's PathHandler prunes it
-  (from the point nearest the robot, up to prune_distance 1.7 m along), with Jazzy's critics
-  but GoalAngleCritic (the routes here have no goal heading); the goal checker ends each goal
-  at 0.25 m; the progress checker (0.5 m in 10 s) or MPPI with every sample colliding fails
-  FollowPath, which runs once more after clearing the local costmap;
+- the controller server (20 Hz) runs FollowPath, MPPI or DWB, on the plan pruned from the
+  point nearest the robot up to prune_distance along it; the goal checker ends each goal at
+  xy_goal_tolerance; the progress checker (0.5 m in 10 s) or a controller with no valid command
+  fails FollowPath, which runs once more after clearing the local costmap;
 - a failure past those makes the tree recover with the next of its round robin (clear both
   costmaps, Spin 1.57 rad, Wait 5 s, BackUp 0.30 m at 0.15 m/s; a failing one hands on to the
   next), then navigate afresh; after 6 recoveries the navigation fails and the robot stands.
 
-Every command passes the velocity smoother (`velocity_smoother.py`), then the collision monitor
-(`collision_monitor.py`). Not yet imitated: GoalAngleCritic, a team's params file. Where this
-differs on purpose: without a map, the global costmap is a window over the route (as
-move_base's here), not the map's extent, and it starts free, as the static layer of an open
-field's map would make it (with unknown space, NavFn keeps to the cells the scans have cleared,
-which rays that return nothing never clear).
+Every command passes the velocity smoother (`velocity_smoother.py`), then, each time the
+smoother publishes, the collision monitor (`collision_monitor.py`). What it did that a report
+should name is in `activity`. Where this differs on purpose: without a map, the global costmap
+is a window over the route (as move_base's here), not the map's extent, and it starts free, as
+the static layer of an open field's map would make it (with unknown space, NavFn keeps to the
+cells the scans have cleared, which rays that return nothing never clear); NavFn searches a
+window 5 m around the robot and its goal; goals have no heading. The README lists the rest.
 """
 
 from __future__ import annotations
@@ -96,6 +98,11 @@ class Nav2:
         # The simulator calls between scans at this rate: the controller server's and the
         # smoother's clocks.
         self.control_frequency = max(s.controller_frequency, s.smoother.smoothing_frequency)
+        # The stuck oracle waits as long as Nav2 keeps trying by its own logic before a
+        # recovery has had its chance: the progress checker's allowance, then as long again
+        # for a recovery (Spin's and BackUp's time_allowance is 10 s) and for navigating
+        # again after it.
+        self.stuck_window = 3.0 * s.movement_time_allowance  # s
         self._behavior: Spin | BackUp | Wait | None = None
         self._robin = 0  # the round robin's next action
         self._retries = 0  # the tree's RecoveryNode retries used

@@ -1,0 +1,151 @@
+"""A Nav2 costmap's parameters: its rolling window, its footprint and its layers (one obstacle
+or voxel layer with one LaserScan source, an inflation layer, a static layer), as
+nav2_costmap_2d reads them (costmap_2d_ros.cpp, plugins/obstacle_layer.cpp, voxel_layer.cpp,
+inflation_layer.cpp at jazzy f4108e5b)."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+
+from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
+from pytest_lasertest.nav.nav2.settings import CostmapConfig
+
+OBSTACLE_LAYERS = ("nav2_costmap_2d::ObstacleLayer", "nav2_costmap_2d::VoxelLayer")
+INFLATION_LAYER = "nav2_costmap_2d::InflationLayer"
+STATIC_LAYER = "nav2_costmap_2d::StaticLayer"
+
+
+def read_costmap(node: NodeParameters, config: CostmapConfig) -> CostmapConfig:
+    """A costmap: its window, footprint and layers (one laser source, inflation, static)."""
+    width = node.number("width", config.costmap.size)
+    if node.number("height", width) != width:
+        raise node.problem(
+            "height",
+            "differs from width; the imitation's rolling window is square",
+            "write the same width and height",
+        )
+    costmap = dataclasses.replace(
+        config.costmap,
+        size=width,
+        resolution=node.number("resolution", config.costmap.resolution),
+        update_frequency=node.number("update_frequency", config.costmap.update_frequency),
+        track_unknown_space=node.flag("track_unknown_space", config.costmap.track_unknown_space),
+    )
+    node.flag("rolling_window", True)
+    config = dataclasses.replace(config, costmap=costmap, footprint=_footprint(node, config))
+    return _layers(node, config)
+
+
+def _footprint(
+    node: NodeParameters, config: CostmapConfig
+) -> tuple[tuple[float, float], ...] | None:
+    """`footprint` (a string of [[x, y], ...]) if set, else a polygon of `robot_radius` if
+    set, padded by footprint_padding; None, the robot's own, if neither is set."""
+    text = node.text("footprint", "[]")
+    padding = node.number("footprint_padding", 0.01)
+    if text.strip() not in ("", "[]"):
+        points = _polygon(node, text)
+        return tuple((x + _sign(x) * padding, y + _sign(y) * padding) for x, y in points)
+    radius = node.number("robot_radius", 0.0)
+    if "robot_radius" not in node.values:
+        return config.footprint
+    # costmap_2d's makeFootprintFromRadius: 16 points on the circle.
+    return tuple(
+        (radius * math.cos(2 * math.pi * i / 16), radius * math.sin(2 * math.pi * i / 16))
+        for i in range(16)
+    )
+
+
+def _sign(value: float) -> float:
+    return (value > 0) - (value < 0)
+
+
+def _polygon(node: NodeParameters, text: str) -> tuple[tuple[float, float], ...]:
+    try:
+        points = json.loads(text)
+        polygon = tuple((float(x), float(y)) for x, y in points)
+    except (ValueError, TypeError):
+        polygon = ()
+    if len(polygon) < 3:
+        raise node.problem(
+            "footprint",
+            f"is not a polygon of three or more [x, y] points: {text!r}",
+            'write e.g. "[[0.5, 0.4], [0.5, -0.4], [-0.5, -0.4], [-0.5, 0.4]]"',
+        )
+    return polygon
+
+
+def _layers(node: NodeParameters, config: CostmapConfig) -> CostmapConfig:
+    plugins = node.names("plugins", ())
+    kinds = {
+        name: node.plugin(name, (*OBSTACLE_LAYERS, INFLATION_LAYER, STATIC_LAYER), "costmap layer")
+        for name in plugins
+    }
+    obstacle = [name for name, kind in kinds.items() if kind in OBSTACLE_LAYERS]
+    inflation = [name for name, kind in kinds.items() if kind == INFLATION_LAYER]
+    if len(obstacle) > 1 or len(inflation) > 1:
+        raise node.problem(
+            "plugins", "names more than one obstacle or inflation layer", "keep one of each"
+        )
+    if inflation and node.flag(f"{inflation[0]}.enabled", True):
+        config = _inflation(node, inflation[0], config)
+    elif plugins:
+        config = _without_inflation(config)
+    if obstacle and node.flag(f"{obstacle[0]}.enabled", True):
+        return _obstacle_layer(node, obstacle[0], kinds[obstacle[0]], config)
+    if plugins:
+        # Nothing marks or clears: the costmap is blind to the scan.
+        source = dataclasses.replace(config.source, marking=False, clearing=False)
+        return dataclasses.replace(config, source=source)
+    return config
+
+
+def _inflation(node: NodeParameters, layer: str, config: CostmapConfig) -> CostmapConfig:
+    costmap = dataclasses.replace(
+        config.costmap,
+        inflation_radius=node.number(f"{layer}.inflation_radius", 0.55),
+        cost_scaling_factor=node.number(f"{layer}.cost_scaling_factor", 10.0),
+    )
+    return dataclasses.replace(config, costmap=costmap)
+
+
+def _without_inflation(config: CostmapConfig) -> CostmapConfig:
+    # No inflation layer: only lethal cells, and those the footprint's inscribed circle
+    # reaches (the smallest inflation the costmap can hold).
+    costmap = dataclasses.replace(config.costmap, inflation_radius=0.0, cost_scaling_factor=0.0)
+    return dataclasses.replace(config, costmap=costmap)
+
+
+def _obstacle_layer(
+    node: NodeParameters, layer: str, kind: str, config: CostmapConfig
+) -> CostmapConfig:
+    """The layer's one laser source: its ranges, heights and inf_is_valid."""
+    sources = node.names(f"{layer}.observation_sources", ())
+    if len(sources) != 1:
+        raise node.problem(
+            f"{layer}.observation_sources",
+            f"names {len(sources)} sources; the imitation feeds its layer one laser scan",
+            "name one LaserScan source, e.g. observation_sources: scan",
+        )
+    prefix = f"{layer}.{sources[0]}."
+    if node.text(f"{prefix}data_type", "PointCloud2") != "LaserScan":
+        raise node.problem(
+            f"{prefix}data_type", "must be LaserScan: the source is the scanner", "write LaserScan"
+        )
+    node.text(f"{prefix}topic", "")
+    source = node.fields(prefix, config.source)
+    top = node.number(f"{layer}.max_obstacle_height", 2.0)
+    if kind == OBSTACLE_LAYERS[1]:
+        column = node.number(f"{layer}.z_voxels", 10, whole=True)
+        column *= node.number(f"{layer}.z_resolution", 0.2)
+        top = min(top, node.number(f"{layer}.origin_z", 0.0) + column)
+    source = dataclasses.replace(
+        source,
+        layer_min_obstacle_height=node.number(f"{layer}.min_obstacle_height", 0.0),
+        layer_max_obstacle_height=top,
+    )
+    inf_is_valid = node.flag(f"{prefix}inf_is_valid", False)
+    costmap = dataclasses.replace(config.costmap, inf_is_valid=inf_is_valid)
+    return dataclasses.replace(config, source=source, costmap=costmap)
