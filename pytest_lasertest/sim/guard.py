@@ -122,8 +122,11 @@ class Guard:
         _check_arity(observe)
         self._observe = observe
         self._controller = controller
-        self.goal_tolerance = _goal_tolerance(
-            self._call("the factory", 0.0, getattr, controller, "goal_tolerance", None)
+        self.goal_tolerance = _positive(
+            self._call("the factory", 0.0, getattr, controller, "goal_tolerance", None),
+            "goal_tolerance",
+            "metres",
+            "the distance (m) at which its goal checker counts the goal reached",
         )
         self.control_frequency = _positive(
             self._call("the factory", 0.0, getattr, controller, "control_frequency", None),
@@ -336,27 +339,6 @@ def _global_rng_states() -> tuple[object, ...]:
     assert isinstance(state, dict)
     inner = state["state"]
     return (random.getstate(), inner["key"].tobytes(), inner["pos"], state["has_gauss"])
-
-
-def _goal_tolerance(value: object) -> float | None:
-    """A controller's goal_tolerance: none, or a positive finite number of metres."""
-    if value is None:
-        return None
-    metres = (
-        float(value) if isinstance(value, numbers.Real) and not isinstance(value, bool) else 0.0
-    )
-    if not 0.0 < metres < math.inf:
-        raise Faulted(
-            ControllerFault(
-                "the factory",
-                0.0,
-                f"returned a controller whose goal_tolerance is {_shown(value)}, not a "
-                "positive number of metres",
-                "set goal_tolerance to the distance (m) at which its goal checker counts the "
-                "goal reached, or leave it out",
-            )
-        )
-    return metres
 
 
 def _activity(value: object, time: float) -> tuple[tuple[float, str], ...]:
