@@ -20,6 +20,7 @@ element (shift_control_sequence), and the sequence shifts one step.
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
@@ -181,6 +182,35 @@ def _furthest_reached(end_x: F32, end_y: F32, path: F32) -> int:
     return furthest
 
 
+class NoiseDrawer:
+    """The optimizer's noise, (2, T, B) standard normal float32 a cycle, each cycle's drawn in a
+    thread of its own while the cycle before runs, as Nav2's NoiseGenerator draws it
+    (noise_generator.cpp, noiseThread, with regenerate_noises). One generator draws every
+    cycle's in turn, so the values are the same as drawn one after another in line; numpy lets
+    go of the GIL while it draws, so the draw overlaps the critics where a core is free."""
+
+    def __init__(self, rng: np.random.Generator, shape: tuple[int, int, int]) -> None:
+        self.rng = rng
+        # Two buffers: the cycle's, and the next one's being drawn.
+        self._buffers = [np.empty(shape, dtype=np.float32) for _ in range(2)]
+        self._drawing: threading.Thread | None = None
+        self._ready = 0  # the buffer the next draw goes to, or has gone to
+
+    def next(self) -> F32:
+        """This cycle's noise; the next cycle's starts drawing."""
+        if self._drawing is None:
+            self._draw(self._ready)
+        else:
+            self._drawing.join()
+        noise, self._ready = self._buffers[self._ready], 1 - self._ready
+        self._drawing = threading.Thread(target=self._draw, args=(self._ready,), daemon=True)
+        self._drawing.start()
+        return noise
+
+    def _draw(self, buffer: int) -> None:
+        self.rng.standard_normal(dtype=np.float32, out=self._buffers[buffer])
+
+
 class Optimizer:
     """MPPI's optimizer for a differential drive: one command per call of `command`."""
 
@@ -191,8 +221,7 @@ class Optimizer:
         self.vx = np.zeros(settings.time_steps, dtype=np.float32)  # (T,) the control sequence
         self.wz = np.zeros(settings.time_steps, dtype=np.float32)
         self.history = np.zeros((4, 2), dtype=np.float32)  # the last four commands [vx, wz]
-        # (2, T, B): each cycle's noise for vx and wz, time-major.
-        self._noise = np.empty((2, settings.time_steps, settings.batch_size), dtype=np.float32)
+        self._noise = NoiseDrawer(rng, (2, settings.time_steps, settings.batch_size))
 
     def command(
         self,
@@ -236,10 +265,8 @@ class Optimizer:
         s = self.settings
         # Time-major (T, B) inside, so that each step's samples lie together; the critics
         # read (B, T) views of them.
-        # Drawn into the same buffer each cycle, and noised in place: the same values as
-        # fresh arrays, without a megabyte of new pages a cycle.
-        noise = self.rng.standard_normal(dtype=np.float32, out=self._noise)
-        noised_vx, noised_wz = noise[0], noise[1]
+        noise = self._noise.next()
+        noised_vx, noised_wz = noise[0], noise[1]  # noised in place
         noised_vx *= np.float32(s.vx_std)
         noised_vx += self.vx[:, np.newaxis]
         noised_wz *= np.float32(s.wz_std)
