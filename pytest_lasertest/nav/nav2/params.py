@@ -75,7 +75,7 @@ def _unmodelled(
 
 
 def _controller_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
-    """controller_server: its rate, the FollowPath controller (MPPI), the progress and goal
+    """controller_server: its rate, the FollowPath controller (MPPI or DWB), the progress and goal
     checkers."""
     if "FollowPath" not in node.names("controller_plugins", ("FollowPath",)):
         raise node.problem(
