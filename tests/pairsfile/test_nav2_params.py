@@ -291,6 +291,7 @@ def test_the_bundled_husky_runs_clearpaths_a200_parameters_with_dwb(tmp_path: Pa
     assert s.collision_monitor is not None
     assert (s.collision_monitor.time_before_collision, s.collision_monitor.min_points) == (0.3, 12)
     assert s.smoother.max_accel == (0.5, 0.5)
+    assert (s.behaviors.min_rotational_vel, s.behaviors.rotational_acc_lim) == (0.2, 0.5)
     # Jazzy reads progress_checker_plugins; Clearpath's file writes Humble's singular name.
     assert "progress_checker_plugin" in config.unmodelled[0]
 

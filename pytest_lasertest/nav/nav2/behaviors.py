@@ -1,9 +1,7 @@
 """Nav2's behaviour server as the default behaviour tree calls it: Spin, BackUp and Wait, each
 checking ahead for collisions on the local costmap (nav2_behaviors at jazzy f4108e5b:
 plugins/spin.cpp, plugins/drive_on_heading.hpp (BackUp drives on a heading backwards),
-plugins/wait.cpp; nav2_params.yaml's behavior_server: cycle_frequency 10 Hz,
-simulate_ahead_time 2.0 s, max_rotational_vel 1.0, min_rotational_vel 0.4,
-rotational_acc_lim 3.2). Our own code.
+plugins/wait.cpp; nav2_params.yaml's behavior_server, `BehaviorSettings`). Our own code.
 
 A behaviour is stepped at each scan with the robot's pose and the time; it answers a command,
 or None once it has ended (`failed` says whether it failed).
@@ -13,16 +11,32 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 Pose = tuple[float, float, float]  # m, m, rad
 Collides = Callable[[Pose], bool]  # whether the footprint at a pose meets a lethal cell
 
-SIMULATE_AHEAD_TIME = 2.0  # s
-CYCLE_PERIOD = 0.1  # s, 1 / cycle_frequency
-MAX_ROTATIONAL_VEL = 1.0  # rad/s
-MIN_ROTATIONAL_VEL = 0.4  # rad/s
-ROTATIONAL_ACC_LIM = 3.2  # rad/s^2
+
+@dataclass(frozen=True)
+class BehaviorSettings:
+    """The behaviour server's parameters, with Nav2's names and Jazzy's values."""
+
+    cycle_frequency: float = 10.0  # Hz
+    simulate_ahead_time: float = 2.0  # s
+    max_rotational_vel: float = 1.0  # rad/s
+    min_rotational_vel: float = 0.4  # rad/s
+    rotational_acc_lim: float = 3.2  # rad/s^2
+
+    @property
+    def cycle_period(self) -> float:
+        return 1.0 / self.cycle_frequency  # s
+
+    @property
+    def cycles_ahead(self) -> int:
+        """How many cycles a collision check looks ahead."""
+        return int(self.simulate_ahead_time / self.cycle_period)
+
+
 TIME_ALLOWANCE = 10.0  # s, DriveOnHeading's and Spin's default time_allowance
 
 
@@ -44,6 +58,7 @@ class Spin:
 
     distance: float  # rad
     collides: Collides
+    settings: BehaviorSettings = field(default_factory=BehaviorSettings)
     began: float | None = None  # s
     turned: float = 0.0  # rad
     last_yaw: float | None = None
@@ -60,9 +75,10 @@ class Spin:
         if time - self.began > TIME_ALLOWANCE:
             self.failed = True
             return None
+        s = self.settings
         speed = min(
-            MAX_ROTATIONAL_VEL,
-            max(MIN_ROTATIONAL_VEL, math.sqrt(2.0 * ROTATIONAL_ACC_LIM * remaining)),
+            s.max_rotational_vel,
+            max(s.min_rotational_vel, math.sqrt(2.0 * s.rotational_acc_lim * remaining)),
         )
         turn = math.copysign(speed, self.distance)
         if self._collides_ahead(pose, turn):
@@ -74,8 +90,8 @@ class Spin:
         """Spin::isCollisionFree: the poses of the next simulate_ahead_time of turning, one
         cycle apart from the robot's own; it stops once the change reaches the angle already
         turned, not the angle left, as Nav2 writes it (so the first cycle checks nothing)."""
-        for cycle in range(int(SIMULATE_AHEAD_TIME / CYCLE_PERIOD)):
-            change = turn * cycle * CYCLE_PERIOD
+        for cycle in range(self.settings.cycles_ahead):
+            change = turn * cycle * self.settings.cycle_period
             if abs(self.turned) - abs(change) <= 0.0:
                 break
             if self.collides((pose[0], pose[1], pose[2] + change)):
@@ -91,6 +107,7 @@ class BackUp:
     distance: float  # m
     speed: float  # m/s
     collides: Collides
+    settings: BehaviorSettings = field(default_factory=BehaviorSettings)
     start: Pose | None = None
     began: float | None = None  # s
     failed: bool = False
@@ -113,8 +130,8 @@ class BackUp:
     def _collides_ahead(self, pose: Pose, remaining: float) -> bool:
         """DriveOnHeading::isCollisionFree: the poses of the next simulate_ahead_time of
         driving, one cycle apart from the robot's own, short of the distance left."""
-        for cycle in range(int(SIMULATE_AHEAD_TIME / CYCLE_PERIOD)):
-            moved = self.speed * cycle * CYCLE_PERIOD
+        for cycle in range(self.settings.cycles_ahead):
+            moved = self.speed * cycle * self.settings.cycle_period
             if remaining - moved <= 0.0:
                 break
             back = (

@@ -38,7 +38,7 @@ from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import place
 from pytest_lasertest.nav.move_base.costmap import LETHAL
 from pytest_lasertest.nav.move_base.navfn import windowed_plan
-from pytest_lasertest.nav.nav2.behaviors import CYCLE_PERIOD, BackUp, Spin, Wait
+from pytest_lasertest.nav.nav2.behaviors import BackUp, Spin, Wait
 from pytest_lasertest.nav.nav2.collision_monitor import approach, scan_points
 from pytest_lasertest.nav.nav2.costmap import Nav2Costmap
 from pytest_lasertest.nav.nav2.critics import ConstraintCritic
@@ -197,18 +197,18 @@ class Nav2:
             self.global_costmap.clear_outside(pose[0], pose[1], 0.0)
             self._recovered()
         elif name == "Spin":
-            self._behavior = Spin(1.57, self._collides)
+            self._behavior = Spin(1.57, self._collides, self.settings.behaviors)
         elif name == "Wait":
             self._behavior = Wait(5.0)
         else:
-            self._behavior = BackUp(0.30, 0.15, self._collides)
+            self._behavior = BackUp(0.30, 0.15, self._collides, self.settings.behaviors)
 
     def _recover(self, pose: Pose, time: float) -> tuple[float, float]:
         """Step the running behaviour at the behaviour server's 10 Hz; when it ends, on to
         navigating again, or on failure to the round robin's next action (all failing fails
         the navigation)."""
         assert self._behavior is not None
-        if not self._due("behavior", time, CYCLE_PERIOD):
+        if not self._due("behavior", time, self.settings.behaviors.cycle_period):
             return self._command
         command = self._behavior.step(pose, time)
         if command is not None:

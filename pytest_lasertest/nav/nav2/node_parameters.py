@@ -13,6 +13,7 @@ from pytest_lasertest.model.robot import ParameterValue
 POSITIVE = frozenset(
     {
         "controller_frequency",
+        "cycle_frequency",
         "update_frequency",
         "width",
         "height",

@@ -262,6 +262,11 @@ def _collision_monitor(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
     return dataclasses.replace(settings, collision_monitor=monitor)
 
 
+def _behavior_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
+    """The behaviour server's rate, its look ahead for collisions and Spin's speeds."""
+    return dataclasses.replace(settings, behaviors=node.fields("", settings.behaviors))
+
+
 READERS = {
     "controller_server": _controller_server,
     "local_costmap": _local_costmap,
@@ -269,4 +274,5 @@ READERS = {
     "planner_server": _planner_server,
     "velocity_smoother": _velocity_smoother,
     "collision_monitor": _collision_monitor,
+    "behavior_server": _behavior_server,
 }

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 from pytest_lasertest.nav.move_base.costmap import CostmapSettings
 from pytest_lasertest.nav.move_base.navfn import NavfnSettings
+from pytest_lasertest.nav.nav2.behaviors import BehaviorSettings
 from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings
 from pytest_lasertest.nav.nav2.critics import (
     ConstraintCritic,
@@ -151,6 +152,7 @@ class Nav2Settings:
         default_factory=CollisionMonitorSettings
     )
     smoother: SmootherSettings = field(default_factory=SmootherSettings)
+    behaviors: BehaviorSettings = field(default_factory=BehaviorSettings)
 
     @property
     def marking(self) -> Marking:

@@ -3,12 +3,15 @@ robot that does not move for the progress checker's allowance stops."""
 
 from __future__ import annotations
 
+import math
 from importlib.metadata import entry_points
 
 import numpy as np
+import pytest
 
 from pytest_lasertest.model.geometry import Point2D, Pose2D
 from pytest_lasertest.model.obstacles import Cylinder
+from pytest_lasertest.nav.nav2.behaviors import BehaviorSettings, Spin
 from pytest_lasertest.nav.nav2.nav2 import Nav2
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 from pytest_lasertest.pairsfile import load_pairs_file
@@ -57,3 +60,15 @@ def test_a_pairs_file_names_nav2_as_a_registered_controller() -> None:
         point for point in entry_points(group="lasertest.controllers") if point.name == "nav2"
     ]
     assert nav2.load() is Nav2
+
+
+def test_spin_slows_into_its_last_radians_as_the_behaviour_servers_parameters_say() -> None:
+    # Clearpath's A200: rotational_acc_lim 0.5, min_rotational_vel 0.2; Jazzy's: 3.2 and 0.4.
+    a200 = BehaviorSettings(min_rotational_vel=0.2, rotational_acc_lim=0.5)
+    commands = {}
+    for name, settings in (("a200", a200), ("jazzy", BehaviorSettings())):
+        spin = Spin(1.57, lambda pose: False, settings)
+        spin.step((0.0, 0.0, 0.0), 0.0)
+        commands[name] = spin.step((0.0, 0.0, 1.50), 1.0)  # 0.07 rad left
+    assert commands["a200"] == (0.0, pytest.approx(math.sqrt(2.0 * 0.5 * 0.07)))
+    assert commands["jazzy"] == (0.0, pytest.approx(math.sqrt(2.0 * 3.2 * 0.07)))
