@@ -97,8 +97,8 @@ class PairFile(pytest.File):
             lines = "\n  ".join(unread)
             self.warn(
                 UnreadParametersWarning(
-                    f"the Nav2 imitation does not read these parameters of the params file "
-                    f"(README, The navigation stacks, says what it imitates):\n  {lines}"
+                    "the Nav2 imitation does not read these parameters of the params file "
+                    f'(the README\'s "The navigation stack" says what it imitates):\n  {lines}'
                 )
             )
 
