@@ -15,7 +15,7 @@ from pytest_lasertest.inputs.node import SpecNode, describe, read_root
 from pytest_lasertest.inputs.yamlfile import YamlList, YamlMap
 from pytest_lasertest.model.robot import ParameterValue, Robot
 from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
-from pytest_lasertest.nav.nav2.params import Parameter, configure
+from pytest_lasertest.nav.nav2.params import Parameter, configured
 from pytest_lasertest.nav.nav2.settings import RELEASES, marking_of
 
 PARAMETERS = "ros__parameters"
@@ -66,7 +66,7 @@ def load_nav2_file(node: SpecNode, release: str) -> tuple[Parameter, ...]:
             where[(name, key)] = value
     parameters = tuple((name, key, _value(value)) for (name, key), value in where.items())
     try:
-        configure(parameters, release)
+        configured(parameters, release)
     except ParameterProblem as problem:
         raise _located(problem, where, root) from None
     return parameters

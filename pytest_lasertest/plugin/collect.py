@@ -76,10 +76,10 @@ class PairFile(pytest.File):
         """Nav2's choice, saying what it runs; and, once, as a warning pytest lists at the
         end, which of the parameters the robot's params file sets the imitation does not
         read."""
-        from pytest_lasertest.nav.nav2.params import configure
+        from pytest_lasertest.nav.nav2.params import configured
         from pytest_lasertest.nav.nav2.settings import describe
 
-        config = configure(spec.robot.nav2, spec.robot.nav2_release)
+        config = configured(spec.robot.nav2, spec.robot.nav2_release)
         self._note_unread(config.unmodelled)
         if spec.move_base_overrides:
             sections = sorted({section for section, _, _ in spec.move_base_overrides})

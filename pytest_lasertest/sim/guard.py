@@ -122,24 +122,27 @@ class Guard:
         _check_arity(observe)
         self._observe = observe
         self._controller = controller
-        self.goal_tolerance = _positive(
-            self._call("the factory", 0.0, getattr, controller, "goal_tolerance", None),
+        self.goal_tolerance = self._figure(
             "goal_tolerance",
             "metres",
             "the distance (m) at which its goal checker counts the goal reached",
         )
-        self.control_frequency = _positive(
-            self._call("the factory", 0.0, getattr, controller, "control_frequency", None),
+        self.control_frequency = self._figure(
             "control_frequency",
             "hertz",
             "the rate (Hz) its own clocks want to be called at between scans",
         )
-        self.stuck_window = _positive(
-            self._call("the factory", 0.0, getattr, controller, "stuck_window", None),
+        self.stuck_window = self._figure(
             "stuck_window",
             "seconds",
             "how long (s) it may make no progress while still trying, by its own logic",
         )
+
+    def _figure(self, name: str, unit: str, meaning: str) -> float | None:
+        """The controller's optional figure `name`: none, or a positive finite number of
+        `unit`; anything else fails the drive, named."""
+        value = self._call("the factory", 0.0, getattr, self._controller, name, None)
+        return _positive(value, name, unit, meaning)
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
         """The controller's command for this scan: two finite floats."""

@@ -9,6 +9,7 @@ import dataclasses
 import json
 import math
 
+from pytest_lasertest.model.robot import pad_footprint
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
 from pytest_lasertest.nav.nav2.settings import CostmapConfig
 
@@ -46,8 +47,7 @@ def _footprint(
     text = node.text("footprint", "[]")
     padding = node.number("footprint_padding", 0.01)
     if text.strip() not in ("", "[]"):
-        points = _polygon(node, text)
-        return tuple((x + _sign(x) * padding, y + _sign(y) * padding) for x, y in points)
+        return pad_footprint(_polygon(node, text), padding)
     radius = node.number("robot_radius", 0.0)
     if "robot_radius" not in node.values:
         return config.footprint
@@ -56,10 +56,6 @@ def _footprint(
         (radius * math.cos(2 * math.pi * i / 16), radius * math.sin(2 * math.pi * i / 16))
         for i in range(16)
     )
-
-
-def _sign(value: float) -> float:
-    return (value > 0) - (value < 0)
 
 
 def _polygon(node: NodeParameters, text: str) -> tuple[tuple[float, float], ...]:
@@ -112,8 +108,7 @@ def _inflation(node: NodeParameters, layer: str, config: CostmapConfig) -> Costm
 
 
 def _without_inflation(config: CostmapConfig) -> CostmapConfig:
-    # No inflation layer: only lethal cells, and those the footprint's inscribed circle
-    # reaches (the smallest inflation the costmap can hold).
+    # No inflation layer: the costmap holds its lethal cells alone.
     costmap = dataclasses.replace(config.costmap, inflation_radius=0.0, cost_scaling_factor=0.0)
     return dataclasses.replace(config, costmap=costmap)
 

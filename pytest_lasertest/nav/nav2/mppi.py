@@ -20,7 +20,6 @@ element (shift_control_sequence), and the sequence shifts one step.
 
 from __future__ import annotations
 
-import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
@@ -28,6 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.nav.move_base.costmap import INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.nav2.noise import NoiseDrawer
 
 F32 = npt.NDArray[np.float32]
 # Savitzky-Golay, quadratic, 9 points (utils.hpp savitskyGolayFilter).
@@ -182,42 +182,13 @@ def _furthest_reached(end_x: F32, end_y: F32, path: F32) -> int:
     return furthest
 
 
-class NoiseDrawer:
-    """The optimizer's noise, (2, T, B) standard normal float32 a cycle, each cycle's drawn in a
-    thread of its own while the cycle before runs, as Nav2's NoiseGenerator draws it
-    (noise_generator.cpp, noiseThread, with regenerate_noises). One generator draws every
-    cycle's in turn, so the values are the same as drawn one after another in line; numpy lets
-    go of the GIL while it draws, so the draw overlaps the critics where a core is free."""
-
-    def __init__(self, rng: np.random.Generator, shape: tuple[int, int, int]) -> None:
-        self.rng = rng
-        # Two buffers: the cycle's, and the next one's being drawn.
-        self._buffers = [np.empty(shape, dtype=np.float32) for _ in range(2)]
-        self._drawing: threading.Thread | None = None
-        self._ready = 0  # the buffer the next draw goes to, or has gone to
-
-    def next(self) -> F32:
-        """This cycle's noise; the next cycle's starts drawing."""
-        if self._drawing is None:
-            self._draw(self._ready)
-        else:
-            self._drawing.join()
-        noise, self._ready = self._buffers[self._ready], 1 - self._ready
-        self._drawing = threading.Thread(target=self._draw, args=(self._ready,), daemon=True)
-        self._drawing.start()
-        return noise
-
-    def _draw(self, buffer: int) -> None:
-        self.rng.standard_normal(dtype=np.float32, out=self._buffers[buffer])
-
-
 class Optimizer:
     """MPPI's optimizer for a differential drive: one command per call of `command`."""
 
     def __init__(
         self, settings: MppiSettings, critics: Sequence[Critic], rng: np.random.Generator
     ) -> None:
-        self.settings, self.critics, self.rng = settings, tuple(critics), rng
+        self.settings, self.critics = settings, tuple(critics)
         self.vx = np.zeros(settings.time_steps, dtype=np.float32)  # (T,) the control sequence
         self.wz = np.zeros(settings.time_steps, dtype=np.float32)
         self.history = np.zeros((4, 2), dtype=np.float32)  # the last four commands [vx, wz]

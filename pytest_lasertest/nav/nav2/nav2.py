@@ -44,7 +44,7 @@ from pytest_lasertest.nav.nav2.costmap import Nav2Costmap
 from pytest_lasertest.nav.nav2.critics import ConstraintCritic
 from pytest_lasertest.nav.nav2.dwb import DwbController
 from pytest_lasertest.nav.nav2.mppi import F32, Critic, Optimizer
-from pytest_lasertest.nav.nav2.params import configure
+from pytest_lasertest.nav.nav2.params import configured
 from pytest_lasertest.nav.nav2.settings import CostmapConfig, Nav2Settings
 from pytest_lasertest.nav.nav2.velocity_smoother import VelocitySmoother
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
@@ -64,21 +64,10 @@ class Nav2:
         settings: Nav2Settings | None = None,
         seed: int = 0,
     ) -> None:
-        self.settings = s = settings or configure(robot.nav2, robot.nav2_release).settings
+        self.settings = s = settings or configured(robot.nav2, robot.nav2_release).settings
         self.route, self.goal_index = route, 0
         self.footprint = _footprint(s.local, robot)  # (V, 2) m
-        critics: list[Critic] = [
-            dataclasses.replace(critic, settings=s.mppi)
-            if isinstance(critic, ConstraintCritic)
-            else critic
-            for critic in s.critics
-        ]
-        # FollowPath: MPPI, or DWB if the params file names it.
-        self.controller: Optimizer | DwbController = (
-            DwbController(s.dwb)
-            if s.dwb is not None
-            else Optimizer(s.mppi, critics, np.random.default_rng(seed))
-        )
+        self.controller = _follow_path(s, seed)
         self.local = Nav2Costmap(s.local.costmap, self.footprint, s.local.source, s.marking)
         self._global_footprint = _footprint(s.global_, robot)
         self.smoother = VelocitySmoother(s.smoother)
@@ -94,6 +83,8 @@ class Nav2:
         self.activity: list[tuple[float, str]] = []
         self._held = False  # whether the collision monitor holds the robot
         self._allowed = (0.0, 0.0)  # the command the collision monitor last let through
+        # The stamp of the last scan the collision monitor read, and its points (P, 2) m.
+        self._seen: tuple[float, FloatArray] = (-math.inf, np.zeros((0, 2)))
         self._stamp = -math.inf  # s, the stamp of the last scan the costmaps were offered
         # The simulator calls between scans at this rate: the controller server's and the
         # smoother's clocks.
@@ -121,7 +112,9 @@ class Nav2:
         if monitor is None:
             self._allowed = smoothed
             return smoothed
-        self._allowed = approach(smoothed, scan_points(scan, monitor), self.footprint, monitor)
+        if scan.stamp != self._seen[0]:  # between scans the monitor reads the last again
+            self._seen = scan.stamp, scan_points(scan, monitor)
+        self._allowed = approach(smoothed, self._seen[1], self.footprint, monitor)
         held = self._allowed == (0.0, 0.0) and smoothed != (0.0, 0.0)
         if held and not self._held:
             self.activity.append((time, "the collision monitor stopped the robot"))
@@ -338,6 +331,19 @@ class Nav2:
         along = np.concatenate([[0.0], np.cumsum(steps)])
         kept: F32 = path[along <= self.settings.prune_distance].astype(np.float32)
         return kept
+
+
+def _follow_path(s: Nav2Settings, seed: int) -> Optimizer | DwbController:
+    """FollowPath: MPPI with the settings' critics, or DWB if the params file names it."""
+    if s.dwb is not None:
+        return DwbController(s.dwb)
+    critics: list[Critic] = [
+        dataclasses.replace(critic, settings=s.mppi)
+        if isinstance(critic, ConstraintCritic)
+        else critic
+        for critic in s.critics
+    ]
+    return Optimizer(s.mppi, critics, np.random.default_rng(seed))
 
 
 def _footprint(config: CostmapConfig, robot: Robot) -> FloatArray:

@@ -16,6 +16,7 @@ say once what was left out.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -46,6 +47,12 @@ class Nav2Config:
 
     settings: Nav2Settings
     unmodelled: tuple[str, ...]
+
+
+@functools.cache
+def configured(parameters: tuple[Parameter, ...], release: str) -> Nav2Config:
+    """`configure`, once per params file and release: each drive's Nav2 asks again."""
+    return configure(parameters, release)
 
 
 def configure(parameters: Iterable[Parameter], release: str = "jazzy") -> Nav2Config:
