@@ -4,12 +4,17 @@ an impossible value is an error at the line that wrote it."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 
 from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.model.driver import CHOICES, DEFAULT_DRIVER, Driver
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.sensor import GaussianNoise, LaserProfile, ProfileError
+
+# A profile's `driver:` group: what its driver publishes (model/driver.py).
+DRIVER_KEYS = ("no_return", "too_near", "range_max", "beam_order", "latency", "stamp")
 
 REQUIRED = ("samples", "min_angle", "max_angle", "range.min", "range.max", "update_rate")
 REQUIRED_FIX = (
@@ -38,6 +43,7 @@ def build_profile(
             range_resolution=_optional(fields, "range.resolution", 0.0, "m"),
             noise=_noise(fields),
             pose=_pose(fields, default_pose),
+            driver=_driver(fields),
         )
     except ProfileError as error:
         # A value taken from a default (the robot's mount) has no line of its own.
@@ -72,3 +78,31 @@ def _pose(fields: Mapping[str, SpecNode], default: Pose3D) -> Pose3D:
         xyz=default.xyz if xyz is None else xyz.triple("m"),
         rpy=default.rpy if rpy is None else rpy.triple("rad"),
     )
+
+
+def _driver(fields: Mapping[str, SpecNode]) -> Driver:
+    """The `driver:` group, each trait one of its choices; what is not written is Gazebo's."""
+    written = {key: fields.get(f"driver.{key}") for key in DRIVER_KEYS}
+    if not any(written.values()):
+        return DEFAULT_DRIVER
+    traits: dict[str, object] = {
+        key: _choice(node, CHOICES[key])
+        for key, node in written.items()
+        if node is not None and key in CHOICES
+    }
+    latency = written["latency"]
+    if latency is not None:
+        traits["latency"] = latency.number("s")
+    return Driver(**traits)  # type: ignore[arg-type]
+
+
+def _choice(node: SpecNode, choices: tuple[str, ...]) -> str:
+    """One of `choices`, also as YAML writes some of them: .inf, -.inf, .nan, 0."""
+    value = node.value
+    if isinstance(value, float) and math.isnan(value):
+        value = "nan"
+    elif isinstance(value, int | float) and not isinstance(value, bool):
+        value = {math.inf: "inf", -math.inf: "-inf", 0.0: "zero"}.get(float(value), value)
+    if value not in choices:
+        raise node.error(f"{value!r} is not a choice here", f"write one of: {', '.join(choices)}")
+    return str(value)

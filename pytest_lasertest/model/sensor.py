@@ -13,6 +13,8 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
+from pytest_lasertest.model.driver import DEFAULT_DRIVER, Driver
+from pytest_lasertest.model.driver import describe as describe_driver
 from pytest_lasertest.model.geometry import FULL_TURN, FloatArray, IntArray, Pose3D, wrap_angles
 from pytest_lasertest.model.scanner_limits import ProfileError as ProfileError  # re-exported
 from pytest_lasertest.model.scanner_limits import (
@@ -60,6 +62,7 @@ class LaserProfile:
     range_resolution: float = 0.0  # m, 0 = readings are not quantised
     noise: GaussianNoise | None = None
     pose: Pose3D = field(default_factory=Pose3D)
+    driver: Driver = DEFAULT_DRIVER  # how its LaserScan encodes what it measured
 
     def __post_init__(self) -> None:
         _check_finite(self)
@@ -173,6 +176,7 @@ class LaserProfile:
             f"range {self.range_min:.2f}-{self.range_max:.2f} m, {self.update_rate:g} Hz, "
             f"scan plane {self.scan_height:.3f} m"
             + (", upside down" if self.pose.is_upside_down() else "")
+            + ("" if self.driver == DEFAULT_DRIVER else f"; driver: {describe_driver(self.driver)}")
         )
 
     def to_laserscan_meta(self) -> LaserScanMeta:
@@ -208,11 +212,13 @@ def same_geometry(first: LaserProfile, second: LaserProfile) -> bool:
 
 def same_sensing(first: LaserProfile, second: LaserProfile) -> bool:
     """Whether two scanners read every world alike: the same beams from the same place at the
-    same instants, quantised and blurred alike. A pair of them has nothing to test."""
+    same instants, quantised and blurred alike, and published alike by their drivers. A pair of
+    them has nothing to test."""
     return (
         same_geometry(first, second)
         and first.range_resolution == second.range_resolution
         and first.noise == second.noise
+        and first.driver == second.driver
     )
 
 

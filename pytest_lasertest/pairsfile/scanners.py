@@ -6,14 +6,25 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.inputs.profile import DRIVER_KEYS
 from pytest_lasertest.model.sensor import LaserProfile
 
 # Gazebo `<ray>` names; the nested groups are flattened to dotted names ("range.max").
-PROFILE_KEYS = ("samples", "resolution", "min_angle", "max_angle", "range", "update_rate", "noise")
+PROFILE_KEYS = (
+    "samples",
+    "resolution",
+    "min_angle",
+    "max_angle",
+    "range",
+    "update_rate",
+    "noise",
+    "driver",
+)
 GROUP_KEYS = {
     "range": ("min", "max", "resolution"),
     "noise": ("type", "mean", "stddev"),
     "pose": ("xyz", "rpy"),
+    "driver": DRIVER_KEYS,
 }
 # Names users bring from other tools, and what to write instead.
 ALIAS_HINTS = {

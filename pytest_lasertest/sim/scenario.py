@@ -19,6 +19,7 @@ call and counts toward its time: some 40 us a scan read.
 
 from __future__ import annotations
 
+import collections
 import dataclasses
 import hashlib
 from collections.abc import Callable
@@ -27,6 +28,7 @@ from typing import Literal
 
 import numpy as np
 
+from pytest_lasertest.model.driver import publish
 from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D, Pose3D
 from pytest_lasertest.model.obstacles import Obstacle
 from pytest_lasertest.model.robot import Robot
@@ -139,22 +141,30 @@ class _Runner:
         self.lidar = FlatLidar(scenario.profile, scenario.obstacles)
         self.meta = scenario.profile.to_laserscan_meta()
         self._latest: LaserScan | None = None  # the last scan given, for calls between scans
+        # Scans measured and not yet delivered, oldest first: each arrives at its stamp.
+        self._pending: collections.deque[LaserScan] = collections.deque()
+        self._delay = scenario.profile.driver.delay(scenario.profile.scan_period)  # s
         self._next_tick = 0.0  # s, when the controller's own clock next wants a call
 
     def run(self) -> Run:
         scenario, world = self.scenario, self.world
         steps = round(scenario.time_limit / scenario.time_step)
         rows: list[tuple[float, ...]] = []
-        command, scans = Twist(0.0, 0.0), 0
+        command, scans, measured_scans = Twist(0.0, 0.0), 0, 0
         pose = world.base_pose()
         yaw = float(pose[2])
         for step in range(steps):
             time = step * scenario.time_step
             measured = Twist(*world.base_twist(yaw))
             ticks = self._tick_due(time)
-            if self._scans_at(step) > scans:
-                command = Twist(*self._observe(scans, time, pose, measured))
-                scans += 1
+            if self._scans_at(step) > measured_scans:
+                self._pending.append(self._measure(measured_scans, time, pose))
+                measured_scans += 1
+            if self._pending and self._pending[0].stamp <= time + 1e-9:
+                while self._pending and self._pending[0].stamp <= time + 1e-9:
+                    self._latest = self._pending.popleft()
+                    command = Twist(*self._call(self._latest, time, pose, measured))
+                    scans += 1
             elif ticks and self._latest is not None:
                 command = Twist(*self._call(self._latest, time, pose, measured))
             left, right = self.drive.wheel_speeds(command, measured, scenario.time_step)
@@ -194,23 +204,30 @@ class _Runner:
         scenario = self.scenario
         return scan_count(scenario.profile.update_rate, step * scenario.time_step)
 
-    def _observe(
-        self, index: int, time: float, pose: FloatArray, measured: Twist
-    ) -> tuple[float, float]:
-        """The controller's command for scan number `index`, taken at `time` s from `pose`."""
+    def _measure(self, index: int, time: float, pose: FloatArray) -> LaserScan:
+        """Scan number `index`, measured at `time` s from `pose`, as its driver publishes it:
+        stamped (and delivered) its driver's delay later."""
         profile, seed = self.scenario.profile, self.scenario.seed
+        driver, meta = profile.driver, self.meta
         # The scan is taken at `pose` (an array of this step's own), whenever it is read.
 
-        def cast() -> FloatArray:
+        def measure() -> FloatArray:
             if self.scenario.caster == "flat":
                 ranges = self.lidar.ranges(pose)
             else:
                 ranges = ranges_from_fractions(profile, self.world.cast(*scan_rays(profile, pose)))
             return noisy(profile, ranges, np.random.default_rng((seed, index)))
 
-        ranges = cast if self.scenario.caster == "flat" else cast()
-        self._latest = CastOnRead(time, ranges, self.meta, profile.pose)
-        return self._call(self._latest, time, pose, measured)
+        def cast() -> FloatArray:
+            return publish(driver, measure(), meta.range_min, meta.range_max)[0]
+
+        stamp = time + self._delay
+        if driver.range_max == "per_scan":  # the header depends on the ranges: cast them now
+            ranges, range_max = publish(driver, measure(), meta.range_min, meta.range_max)
+            meta = dataclasses.replace(meta, range_max=range_max)
+            return CastOnRead(stamp, ranges, meta, profile.pose)
+        deferred = cast if self.scenario.caster == "flat" else cast()
+        return CastOnRead(stamp, deferred, meta, profile.pose)
 
     def _call(
         self, scan: LaserScan, time: float, pose: FloatArray, measured: Twist
