@@ -1,6 +1,6 @@
 """The `lasertest` command: `plan` finds placements, `explain` shows which beams read one of them,
-`profile` shows the laser the gate reads from a robot description, `catalogue` lists scanner
-models, `doctor` checks the installation."""
+`profile` shows the laser the gate reads from a robot description (or infers from a bag),
+`catalogue` lists scanner models, `doctor` checks the installation."""
 
 from __future__ import annotations
 
@@ -75,11 +75,24 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def add_profile_parser(commands: Any) -> None:
-    """`lasertest profile FILE [--sensor] [--ref] [--xacro-arg ...] [--package ...] [--json]`."""
+    """`lasertest profile FILE [--sensor] [--ref] [--xacro-arg ...] [--package ...] [--json]`,
+    or `lasertest profile --bag PATH [--topic TOPIC] [--json]`."""
     profile = commands.add_parser(
-        "profile", help="print the laser profile the gate reads from a URDF, xacro or SDF file"
+        "profile",
+        help="print the laser profile the gate reads from a URDF, xacro or SDF file, or the "
+        "profile a recording of the scanner (a bag) shows",
     )
-    profile.add_argument("file", type=Path, metavar="FILE")
+    profile.add_argument("file", type=Path, metavar="FILE", nargs="?")
+    profile.add_argument(
+        "--bag",
+        type=Path,
+        metavar="PATH",
+        help="infer the profile from a bag's LaserScan messages: a rosbag2 directory, an .mcap "
+        "or .db3 file, or a ROS 1 .bag",
+    )
+    profile.add_argument(
+        "--topic", metavar="TOPIC", help="the bag's LaserScan topic, when it has several"
+    )
     profile.add_argument(
         "--sensor", metavar="NAME", help="the laser to read, when there are several"
     )

@@ -22,6 +22,10 @@ if TYPE_CHECKING:
     from pytest_lasertest.sim.scenario import ControllerError
 
 DESCRIPTION = "a URDF, xacro or SDF file"
+BOTH = (
+    "lasertest profile robots/mybot/robot.urdf.xacro [--sensor NAME ...] reads a description; "
+    "lasertest profile --bag rosbag2_2024_05_01 [--topic /scan] reads a recording"
+)
 
 
 def print_plan(path: Path, *, as_json: bool) -> int:
@@ -66,10 +70,14 @@ def print_explain(path: Path, pair_name: str, witness_id: str, *, as_json: bool)
 
 
 def print_profile(args: argparse.Namespace) -> int:
-    """Print the laser a description holds, as the gate reads it."""
+    """Print the laser a description holds, as the gate reads it, or the profile a recording
+    of the scanner shows."""
     from pytest_lasertest.descriptions.profile import read_profile
     from pytest_lasertest.reports.description import profile_read_json, profile_read_text
 
+    _check_profile_source(args)
+    if args.bag is not None:
+        return print_bag_profile(args.bag, args.topic, as_json=args.json)
     if args.ref is None:  # at a revision, the working tree may well lack the file
         check_file(args.file, DESCRIPTION, "lasertest profile robots/mybot/robot.urdf.xacro")
     read = read_profile(
@@ -81,6 +89,40 @@ def print_profile(args: argparse.Namespace) -> int:
     )
     print(json_text(profile_read_json(read)) if args.json else profile_read_text(read))
     return 0
+
+
+def print_bag_profile(path: Path, topic: str | None, *, as_json: bool) -> int:
+    """Print the profile the LaserScan messages of a bag show, as YAML a pairs file pastes."""
+    from pytest_lasertest.inputs.bags import BagError
+    from pytest_lasertest.inputs.inferred import profile_from_bag
+    from pytest_lasertest.reports.recording import recording_json, recording_yaml
+
+    try:
+        inferred = profile_from_bag(path, topic)
+    except BagError as error:
+        problem = f"{display_path(error.path)}: {error.problem}"
+        raise CommandError(problem, error.fix, error.path, kind="input") from None
+    print(json_text(recording_json(inferred, path)) if as_json else recording_yaml(inferred, path))
+    return 0
+
+
+def _check_profile_source(args: argparse.Namespace) -> None:
+    """`lasertest profile` reads a description FILE or a --bag, and each its own options."""
+    if args.bag is None and args.file is None:
+        raise CommandError("give a description FILE, or a recording with --bag PATH", BOTH)
+    if args.bag is not None and args.file is not None:
+        raise CommandError("give a description FILE or --bag PATH, not both", BOTH)
+    if args.bag is None and args.topic is not None:
+        raise CommandError("--topic names a topic of a bag, and no --bag was given", BOTH)
+    described = {
+        "--sensor": args.sensor is not None,
+        "--ref": args.ref is not None,
+        "--xacro-arg": bool(args.xacro_arg),
+        "--package": bool(args.package),
+    }
+    given = [option for option, used in described.items() if used]
+    if args.bag is not None and given:
+        raise CommandError(f"only a description FILE takes {', '.join(given)}, not --bag", BOTH)
 
 
 def print_catalogue(*, as_json: bool) -> int:

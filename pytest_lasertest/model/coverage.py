@@ -13,6 +13,7 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from pytest_lasertest.model.driver import Driver, differences
 from pytest_lasertest.model.geometry import FULL_TURN, wrap_angle
 from pytest_lasertest.model.sensor import LaserProfile
 
@@ -41,8 +42,8 @@ class CoverageChange:
     """One sensing attribute that differs between the baseline and the candidate."""
 
     attribute: str
-    baseline: float
-    candidate: float
+    baseline: float | str  # a figure in `unit`, or a driver's choice (model/driver.py)
+    candidate: float | str
     unit: str
     worse: bool  # the candidate is blind somewhere the baseline was not
     detail: str
@@ -79,6 +80,7 @@ def compare_coverage(
         *_update_rate(baseline, candidate, max_speed),
         *_scan_height(baseline, candidate),
         *_other(baseline, candidate),
+        *_driver(baseline.driver, candidate.driver),
     ]
     return CoverageComparison(tuple(changes), tuple(lost), tuple(gained))
 
@@ -241,4 +243,18 @@ def _other(baseline: LaserProfile, candidate: LaserProfile) -> Iterator[Coverage
             worse=False,
             detail=f"range noise {sigma_after * 1e3:.1f} mm (1 sigma), was "
             f"{sigma_before * 1e3:.1f} mm",
+        )
+
+
+def _driver(baseline: Driver, candidate: Driver) -> Iterator[CoverageChange]:
+    """Each trait the two drivers publish differently: the scanner sees as much, but what it
+    publishes reads differently to a costmap, a collision monitor or a controller."""
+    for trait, detail in differences(baseline, candidate):
+        yield CoverageChange(
+            f"driver.{trait}",
+            getattr(baseline, trait),
+            getattr(candidate, trait),
+            "s" if trait == "latency" else "",
+            worse=False,
+            detail=detail,
         )

@@ -116,11 +116,11 @@ def _value(encoding: Encoding, range_min: float, range_max: float) -> float:
     }[encoding]
 
 
-def differences(baseline: Driver, candidate: Driver) -> tuple[str, ...]:
-    """Each way the candidate's driver publishes differently from the baseline's, in words."""
+def differences(baseline: Driver, candidate: Driver) -> tuple[tuple[str, str], ...]:
+    """Each trait the candidate's driver publishes differently from the baseline's: its name,
+    and in words what the candidate publishes and what that does downstream."""
     return tuple(
-        f"{_WORDS[item.name]}: {_say(item.name, getattr(baseline, item.name))} -> "
-        f"{_say(item.name, getattr(candidate, item.name))}"
+        (item.name, _consequence(item.name, getattr(candidate, item.name)))
         for item in fields(Driver)
         if getattr(baseline, item.name) != getattr(candidate, item.name)
     )
@@ -152,3 +152,41 @@ def _say(name: str, value: object) -> str:
     if name == "range_max":
         return "fixed" if value == "fixed" else "the largest reading of each scan"
     return str(value)
+
+
+def _consequence(trait: str, value: object) -> str:
+    """What publishing a trait's value does to the consumers of the scan (ROS 1 and 2 alike:
+    laser_geometry's projection keeps range_min <= r < range_max, and costmap_2d's
+    inf_is_valid turns +inf into range_max - 1e-4; Nav2's collision monitor keeps
+    range_min <= r <= range_max)."""
+    said = f"{_WORDS[trait]} {_say(trait, value)}"
+    if trait == "no_return" or trait == "too_near":
+        return f"{said}: {_READ_AS[str(value)]}"
+    if trait == "range_max" and value == "per_scan":
+        return (
+            f"{said}: with inf_is_valid, each no-return becomes a reading 1e-4 m short of it, a "
+            "wall wherever that falls within the obstacle range (sick_scan_xd #509)"
+        )
+    if trait == "beam_order" and value == "clockwise":
+        return (
+            f"{said}: the ranges run against the header's angles, so every reading is mirrored "
+            "across the laser's x axis (rplidar_ros #55)"
+        )
+    if trait == "latency" or trait == "stamp":
+        return (
+            f"{said}: a stack places the scan where the robot is at the stamp, not where it was "
+            "measured, turned by the turn rate times the delay (navigation2 #3352)"
+        )
+    return said
+
+
+_READ_AS = {
+    "inf": "REP 117; with inf_is_valid a costmap clears along it",
+    "-inf": "REP 117; no consumer takes it for a reading",
+    "nan": "every consumer drops it, so it clears nothing even with inf_is_valid",
+    "zero": "a costmap drops it below range_min, so it clears nothing; a consumer that takes "
+    "0.0 for a reading sees something at the laser itself",
+    "range_max": "a costmap drops it (r < range_max), so it clears nothing; Nav2's collision "
+    "monitor counts it (r <= range_max), a point range_max away",
+    "range_min": "a reading at range_min: every consumer takes it for something right there",
+}

@@ -48,13 +48,14 @@ class LaserScan:
     mount: Pose3D  # the laser frame in the robot's base_footprint
 
     def points_in_base(self, within: float = math.inf, too_near: bool = False) -> FloatArray:
-        """Where each finite reading nearer than `within` m lies in the robot's base frame,
-        shape (M, 2), m; with `too_near`, also each reading nearer than range_min (-inf),
-        placed at range_min: something is there, at most that far."""
+        """Where each reading from range_min to nearer than `within` m lies in the robot's base
+        frame, shape (M, 2), m; with `too_near`, also each reading nearer than range_min (-inf),
+        placed at range_min: something is there, at most that far. A reading below range_min
+        that is not -inf (a driver's 0.0) and NaN are no readings, as LaserScan says."""
         ranges = self.ranges
         if too_near:
             ranges = np.where(ranges == -np.inf, self.meta.range_min, ranges)
-        beams = (np.abs(ranges) < within).nonzero()[0]
+        beams = ((ranges >= self.meta.range_min) & (ranges < within)).nonzero()[0]
         if not len(beams):
             return _NO_POINTS
         directions, origin = _beam_directions(self.meta, self.mount, len(ranges))

@@ -22,6 +22,7 @@ from pytest_lasertest.pairsfile.described import DESCRIPTION_KEYS, is_described,
 from pytest_lasertest.pairsfile.nav2_params import read_nav2
 from pytest_lasertest.pairsfile.navigation import read_navigation
 from pytest_lasertest.pairsfile.placements import PinnedPlacement, read_placements
+from pytest_lasertest.pairsfile.recorded import read_recorded
 from pytest_lasertest.pairsfile.robot import read_robot
 from pytest_lasertest.pairsfile.scanners import PROFILE_KEYS, Scanner, read_fields
 from pytest_lasertest.pairsfile.world import World, read_world
@@ -225,7 +226,9 @@ def _read_pair(name: str, node: SpecNode, catalogue: Catalogue, mount: Pose3D) -
 
 
 def _read_scanner(node: SpecNode, catalogue: Catalogue, mount: Pose3D) -> Scanner:
-    fields = read_fields(node, ("model", *DESCRIPTION_KEYS, *PROFILE_KEYS, "pose"))
+    fields = read_fields(node, ("model", "bag", *DESCRIPTION_KEYS, *PROFILE_KEYS, "pose"))
+    if "bag" in fields:
+        return read_recorded(node, fields, mount)
     if is_described(fields):
         described = read_described(node, fields)
         return Scanner(described.profile, None, described.label)

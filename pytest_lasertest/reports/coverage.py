@@ -37,7 +37,7 @@ def coverage_properties(comparison: CoverageComparison) -> list[tuple[str, objec
         *(
             (
                 f"lasertest.{change.attribute}",
-                f"{change.baseline:g} -> {change.candidate:g} {change.unit}",
+                f"{_value(change.baseline)} -> {_value(change.candidate)} {change.unit}".rstrip(),
             )
             for change in comparison.changes
         ),
@@ -45,7 +45,10 @@ def coverage_properties(comparison: CoverageComparison) -> list[tuple[str, objec
 
 
 def _change_line(change: CoverageChange) -> str:
-    return (
-        f"    {change.attribute}: {change.baseline:g} -> {change.candidate:g} {change.unit}; "
-        f"{change.detail}"
-    )
+    values = f"{_value(change.baseline)} -> {_value(change.candidate)} {change.unit}".rstrip()
+    return f"    {change.attribute}: {values}; {change.detail}"
+
+
+def _value(value: float | str) -> str:
+    """A figure as %g, a driver's choice as it is written."""
+    return value if isinstance(value, str) else f"{value:g}"

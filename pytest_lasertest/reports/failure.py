@@ -30,6 +30,7 @@ from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.reports.drive import MEANINGS, controller_line, run_properties
 from pytest_lasertest.reports.formats import Artifacts, Replay, pose_text, run_line, shell_word
+from pytest_lasertest.search.blame import TraitTried, blame_text
 from pytest_lasertest.search.offsets import AXES, OffsetBox
 from pytest_lasertest.search.trials import TrialResult, Trials
 
@@ -52,6 +53,8 @@ class PlacementFailure:
     seed: int  # of the run, and of its scan noise
     run_options: dict[str, object]  # the run's seed, profile and policy, as artifacts record
     unstored: str | None = None  # why Hypothesis's example database cannot keep the failure
+    # The candidate again with each driver trait the pair differs in set to the baseline's.
+    driver_tried: tuple[TraitTried, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -87,6 +90,7 @@ def failure_report(failure: PlacementFailure, replay: Replay, artifacts: Artifac
         *beam_lines(trials.scene, result),
         run_line("baseline", pair.baseline.label, result.baseline),
         run_line("candidate", pair.candidate.label, result.candidate),
+        *([f"  driver     {blame_text(failure.driver_tried)}"] if failure.driver_tried else []),
         search_line(trials, failure.box),
         *(f"  hypothesis {note}" for note in failure.notes),
         f"  policy     {trials.policy}",

@@ -2,8 +2,10 @@
 PyBullet to a trajectory and the oracles' verdicts.
 
 One run is one fresh DIRECT client stepped at a fixed time step. The scanner scans at its
-update rate; each scan goes to the controller with the odometry, and the command it answers is
-driven through the wheels until the next scan. The same scenario gives the same trajectory, bit
+update rate; each scan goes through the scanner's driver (`model/driver.py`: its encodings,
+beam order and range_max) and reaches the controller with the odometry at the driver's stamp,
+at the first step from it (at once, for Gazebo's driver), and the command it answers is driven
+through the wheels until the next scan. The same scenario gives the same trajectory, bit
 for bit: PyBullet is deterministic for identical command sequences, and each scan's noise comes
 from a generator of its own, seeded by the scenario's seed and the scan's index. The controller
 is made and called through `Guard` (`guard.py`), which reads its commands exactly as returned

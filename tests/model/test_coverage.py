@@ -231,3 +231,17 @@ def test_a_single_beam_candidate_loses_the_whole_field_of_view_but_its_one_direc
         (pytest.approx(-1.57), pytest.approx(1.57)),
         (pytest.approx(0.0), pytest.approx(1.57)),
     ]
+
+
+def test_a_driver_change_is_listed_in_words_and_loses_no_coverage() -> None:
+    from pytest_lasertest.model.driver import Driver
+
+    baseline = profile()
+    candidate = profile(driver=Driver(beam_order="clockwise", latency=0.1))
+    comparison = compare_coverage(baseline, candidate, min_obstacle_size=0.05, max_speed=1.0)
+    assert comparison.losses == ()
+    changes = {change.attribute: change for change in comparison.changes}
+    assert set(changes) == {"driver.beam_order", "driver.latency"}
+    assert changes["driver.beam_order"].candidate == "clockwise"
+    assert "mirrored" in changes["driver.beam_order"].detail
+    assert changes["driver.latency"].unit == "s"

@@ -5,6 +5,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
+from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.model.geometry import Point2D, Pose2D, Pose3D
 from pytest_lasertest.pairsfile import load_pairs_file
 from tests.helpers import EXAMPLES
@@ -93,3 +96,40 @@ def test_the_paper_example_holds_table_iv_b(tmp_path: Path) -> None:
     )
     assert (size.baseline.profile.beam_count, size.candidate.profile.beam_count) == (32, 16)
     assert blind.baseline.profile.beam_count == distance.candidate.profile.beam_count == 720
+
+
+def test_a_scanners_driver_is_read_with_yamls_own_spellings_of_inf_nan_and_zero(
+    tmp_path: Path,
+) -> None:
+    text = VALID_PAIRS.replace(
+        "      model: sick_lms111",
+        "      model: sick_lms111\n"
+        "      driver: {no_return: .nan, too_near: 0, range_max: per_scan, latency: 0.02}",
+    )
+    driver = load_pairs_file(write(tmp_path, text)).pairs[0].candidate.profile.driver
+    assert (driver.no_return, driver.too_near, driver.range_max) == ("nan", "zero", "per_scan")
+    assert driver.latency == 0.02
+
+
+@pytest.mark.parametrize(
+    ("driver", "problem", "fix"),
+    [
+        ("{no_return: -.inf}", "'-inf' is not a choice here", "inf, nan, zero, range_max"),
+        ("{beam_order: cw}", "'cw' is not a choice here", "counter-clockwise, clockwise"),
+        ("{latency: -0.5}", "-0.5 s is not a stamp delay", "0 to 10"),
+        ("{latency: fast}", "expected a number in s", "write a number in s"),
+        ("{no_retrun: nan}", "unknown key 'no_retrun'", "did you mean 'no_return'?"),
+    ],
+)
+def test_a_driver_no_scanner_has_is_an_error_at_its_line_with_the_fix(
+    tmp_path: Path, driver: str, problem: str, fix: str
+) -> None:
+    text = VALID_PAIRS.replace(
+        "      model: sick_lms111", f"      model: sick_lms111\n      driver: {driver}"
+    )
+    with pytest.raises(SpecError) as refused:
+        load_pairs_file(write(tmp_path, text))
+    line = 1 + text.splitlines().index(f"      driver: {driver}")
+    assert refused.value.location.line == line
+    assert problem in refused.value.problem
+    assert fix in refused.value.fix

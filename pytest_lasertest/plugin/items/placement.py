@@ -34,6 +34,7 @@ from pytest_lasertest.reports.failure import (
     witness_properties,
 )
 from pytest_lasertest.reports.formats import Artifacts
+from pytest_lasertest.search.blame import blame_driver
 from pytest_lasertest.search.offsets import OffsetBox
 from pytest_lasertest.search.trials import TrialFailed, Trials
 from pytest_lasertest.search.witness import search_witness
@@ -101,6 +102,7 @@ class SearchItem(PairItem):
     def _fail(self, witness: Witness, failed: TrialFailed, trials: Trials, box: OffsetBox) -> None:
         """Record the minimal failure, write its artifacts, and fail the item with it."""
         self.user_properties += failure_properties(failed.result)
+        setting = self.lasertest.setting(self.spec, self.pair, self.controller)
         failure = PlacementFailure(
             self.nodeid,
             self.spec,
@@ -115,6 +117,10 @@ class SearchItem(PairItem):
             self.options.recorded(),
             # Hypothesis drops what it cannot save without a word: say so, or the rerun misleads.
             unwritable(self._database()),
+            # Only a regression is the change's doing, and only then may a trait be to blame.
+            blame_driver(setting, failed.result.placement)
+            if failed.result.classification == "regression"
+            else (),
         )
         raise ItemFailure(failure_report(failure, self.replay, self._write_failure(failure)))
 

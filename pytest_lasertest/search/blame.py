@@ -1,0 +1,51 @@
+"""Which driver trait a failure comes from: the candidate driven again at the failing placement
+with one trait of its driver at a time set back to the baseline's.
+
+A pair whose scanners publish differently (model/driver.py) may fail through any trait in which
+they differ, and a reader fixes a driver one parameter at a time. One more run per differing
+trait, and only for the minimal failure, says which of them the failure needs.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+from pytest_lasertest.model.driver import differences
+from pytest_lasertest.model.verify import Placement
+from pytest_lasertest.search.trials import Setting
+
+
+@dataclass(frozen=True)
+class TraitTried:
+    """The candidate at the failing placement with one driver trait set to the baseline's."""
+
+    trait: str  # a Driver field
+    baseline_value: object  # what the baseline's driver publishes for it
+    passes: bool  # whether the candidate then passes
+
+
+def blame_driver(setting: Setting, placement: Placement) -> tuple[TraitTried, ...]:
+    """Each trait in which the pair's drivers differ, tried alone at `placement`."""
+    baseline, candidate = setting.pair.baseline.profile, setting.pair.candidate.profile
+    tried = []
+    for trait, _ in differences(baseline.driver, candidate.driver):
+        value = getattr(baseline.driver, trait)
+        driver = dataclasses.replace(candidate.driver, **{trait: value})
+        run = setting.drive(dataclasses.replace(candidate, driver=driver), placement)
+        tried.append(TraitTried(trait, value, run.passed))
+    return tuple(tried)
+
+
+def blame_text(tried: tuple[TraitTried, ...]) -> str:
+    """One line: the traits that alone make the candidate pass, or that none does."""
+    cures = [item for item in tried if item.passes]
+    if not cures:
+        names = ", ".join(item.trait for item in tried)
+        return f"fails still with the baseline's {names}, each alone: not one trait alone"
+    named = ", ".join(f"{item.trait} ({_value(item.baseline_value)})" for item in cures)
+    return f"passes with the baseline's {named}: the failure comes from the driver"
+
+
+def _value(value: object) -> str:
+    return f"{value:g} s" if isinstance(value, float) else str(value)
