@@ -1,0 +1,51 @@
+"""The driver examples under Nav2 (Clearpath's A200 parameters with inf_is_valid), as their
+README says: a per-scan range_max and a reversed beam order each fail as a regression, for
+their trait, and their fixed variants pass. Under move_base they run in the main job
+(test_examples.py)."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+from tests.helpers import EXAMPLES
+
+CASES = {
+    "range_max_per_scan.lasertest.yaml": ("range_max_per_scan", "range_max"),
+    "reversed_beams.lasertest.yaml": ("reversed_beams", "beam_order"),
+}
+UNDER_NAV2 = "controller: nav2\nnavigation:\n  nav2: a200_inf_is_valid.nav2.yaml"
+
+
+def test_a_per_scan_range_max_and_reversed_beams_fail_under_nav2_and_their_fixes_pass(
+    pytester: pytest.Pytester,
+) -> None:
+    drivers = EXAMPLES / "drivers"
+    shutil.copy(drivers / "a200_inf_is_valid.nav2.yaml", pytester.path)
+    for name in CASES:
+        text = (drivers / name).read_text()
+        assert text.count("controller: move_base") == 1
+        (pytester.path / name).write_text(text.replace("controller: move_base", UNDER_NAV2))
+    result = pytester.runpytest_subprocess(
+        *CASES,
+        "-rA",
+        "--laser-seed=1",
+        "--laser-profile=ci",
+        "--laser-policy=regression",
+        "-n",
+        "2",
+    )
+    failed = {line.split()[1] for line in result.stdout.lines if line.startswith("FAILED ")}
+    assert failed == {f"{name}::{pair}[avoid-0]" for name, (pair, _) in CASES.items()}
+    for pair, trait in CASES.values():
+        result.stdout.fnmatch_lines(
+            [
+                f"*_ {pair}[[]avoid-0[]] _*",
+                "*: a regression: the baseline passes where the candidate fails",
+                "  controller nav2 *",
+                f"  driver     passes with the baseline's {trait} (*): the failure comes from *",
+            ]
+        )
+    passed = {line.split()[1] for line in result.stdout.lines if line.startswith("PASSED ")}
+    assert {f"{name}::{pair}_fixed[avoid-0]" for name, (pair, _) in CASES.items()} <= passed
