@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
 from pytest_lasertest.pairsfile import load_pairs_file
 from tests.helpers import REPO
+from tests.helpers.bags import laser_scans, write_bag
 
 README = (REPO / "README.md").read_text()
 
@@ -28,3 +30,17 @@ def test_the_quickstart_is_one_command_for_the_main_job_and_one_for_the_tests() 
     assert commands[0].endswith("pytest examples/")
     assert commands[1].endswith("pytest -n auto tests/")  # the tests run on every core
     assert all("\n" not in command for command in commands)
+
+
+def test_the_readmes_gate_on_a_recording_loads_with_the_recording_as_its_candidate(
+    tmp_path: Path,
+) -> None:
+    recordings = README.split("### Recordings")[1].split("\n### ")[0]
+    gate = re.search(r"```yaml\n(.*?)```", recordings, re.DOTALL)
+    assert gate is not None
+    write_bag(tmp_path / "new_scanner", laser_scans(no_return=math.nan))
+    path = tmp_path / "gate.lasertest.yaml"
+    path.write_text(gate.group(1))
+    candidate = load_pairs_file(path).pairs[0].candidate
+    assert candidate.label == "bag new_scanner /scan"
+    assert candidate.profile.driver.no_return == "nan"
