@@ -3,7 +3,9 @@
 A constraint is a condition such as `x > 2` or `size <= 0.3 and abs(y) < 1` over the
 obstacle's centre `x`, `y` (m, world frame), `yaw` (rad), `size` (m) and `height` (m).
 It is linear: numbers may multiply or divide a variable, variables may not multiply each other.
-Nothing is evaluated; anything outside this grammar is refused with the reason.
+Nothing of the text is evaluated; anything outside this grammar is refused with the reason.
+The solver's witnesses meet the constraints by construction; `admits` checks a placement made
+or moved elsewhere against the parsed tree.
 """
 
 from __future__ import annotations
@@ -11,11 +13,14 @@ from __future__ import annotations
 import ast
 import difflib
 import math
+import operator
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Literal
 
 from pytest_lasertest.inputs.errors import Location
 from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.model.obstacles import Cylinder, Obstacle
 
 VARIABLES = {
     "x": "m",
@@ -282,24 +287,67 @@ def _has_variable(term: Term) -> bool:
     return False
 
 
-def _value(term: Term) -> float:
-    """The value of a term without variables; division by zero was refused when it was parsed."""
+def _value(term: Term, variables: Mapping[str, float] | None = None) -> float:
+    """The value of a term, its variables at `variables` (none if not given); division by zero
+    was refused when it was parsed, and a divisor holds no variable."""
     match term:
         case Number(value=value):
             return value
+        case Variable(name=name) if variables is not None:
+            return variables[name]
         case Negative(operand=operand):
-            return -_value(operand)
+            return -_value(operand, variables)
         case Arithmetic(operator="+", left=left, right=right):
-            return _value(left) + _value(right)
+            return _value(left, variables) + _value(right, variables)
         case Arithmetic(operator="-", left=left, right=right):
-            return _value(left) - _value(right)
+            return _value(left, variables) - _value(right, variables)
         case Arithmetic(operator="*", left=left, right=right):
-            return _value(left) * _value(right)
+            return _value(left, variables) * _value(right, variables)
         case Arithmetic(operator="/", left=left, right=right):
-            return _value(left) / _value(right)
+            return _value(left, variables) / _value(right, variables)
         case Call(function="abs", arguments=arguments):
-            return abs(_value(arguments[0]))
+            return abs(_value(arguments[0], variables))
         case Call(function=function, arguments=arguments):
-            values = [_value(argument) for argument in arguments]
+            values = [_value(argument, variables) for argument in arguments]
             return min(values) if function == "min" else max(values)
     raise ValueError(f"{term} holds a variable")
+
+
+def admits(constraints: Sequence[Constraint], variables: Mapping[str, float]) -> bool:
+    """Whether an obstacle whose x, y (m), yaw (rad), size and height (m) are `variables`
+    meets every constraint: the solver's witnesses do by construction; a placement made or
+    moved elsewhere (a seed both scanners read, a perturbation) is asked here."""
+    return all(_holds(constraint.formula, variables) for constraint in constraints)
+
+
+def obstacle_variables(obstacle: Obstacle) -> dict[str, float]:
+    """The constraint language's variables for an obstacle, as the solver reads them: a
+    cylinder's size is its diameter (its yaw 0), a box's its longer side."""
+    if isinstance(obstacle, Cylinder):
+        size, yaw = 2.0 * obstacle.radius, 0.0
+    else:
+        size, yaw = max(obstacle.length, obstacle.width), obstacle.yaw
+    return {"x": obstacle.x, "y": obstacle.y, "yaw": yaw, "size": size, "height": obstacle.height}
+
+
+def _holds(formula: Formula, variables: Mapping[str, float]) -> bool:
+    match formula:
+        case Comparison(operator=relation, left=left, right=right):
+            return _COMPARE[relation](_value(left, variables), _value(right, variables))
+        case Junction(operator="and", operands=operands):
+            return all(_holds(operand, variables) for operand in operands)
+        case Junction(operands=operands):
+            return any(_holds(operand, variables) for operand in operands)
+        case Not(operand=operand):
+            return not _holds(operand, variables)
+    raise TypeError(formula)
+
+
+_COMPARE: dict[str, Callable[[float, float], bool]] = {
+    "<": operator.lt,
+    "<=": operator.le,
+    ">": operator.gt,
+    ">=": operator.ge,
+    "==": operator.eq,
+    "!=": operator.ne,
+}

@@ -16,6 +16,7 @@ from pytest_lasertest.model.plan import PairPlan, Witness
 from pytest_lasertest.model.route import NominalPath, nominal_path, timed_to
 from pytest_lasertest.model.verify import Scene
 from pytest_lasertest.pairsfile import Pair, PairsFile
+from pytest_lasertest.pairsfile.constraints import admits, obstacle_variables
 from pytest_lasertest.sim.scenario import Run
 
 
@@ -43,7 +44,13 @@ def plan_scene(spec: PairsFile, pair: Pair, scene: Scene) -> PairPlan:
 
 def avoid_for(spec: PairsFile, scene: Scene) -> tuple[Witness, ...]:
     """The placements both scanners read that the robot must act on (`model/avoid.py`)."""
-    return avoid_witnesses(scene, spec.settings.obstacle_sizes)
+    witnesses = avoid_witnesses(scene, spec.settings.obstacle_sizes)
+    # Seeds are placed by rule, not by the solver: the pairs file's constraints are asked here.
+    return tuple(
+        witness
+        for witness in witnesses
+        if admits(spec.constraints, obstacle_variables(witness.placement.obstacle))
+    )
 
 
 def pair_scene(spec: PairsFile, pair: Pair, control: Run | None = None) -> Scene:

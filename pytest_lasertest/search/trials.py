@@ -16,6 +16,7 @@ from pytest_lasertest.model.policy import Classification, Policy, classify, fail
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.model.verify import Placement, Scene, Verification, verify
 from pytest_lasertest.pairsfile import Pair, PairsFile
+from pytest_lasertest.pairsfile.constraints import admits, obstacle_variables
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.search.drives import RunCache, scenario
 from pytest_lasertest.search.offsets import Offset, Untested, discriminates, perturbed
@@ -23,6 +24,7 @@ from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Run, Scenario
 
 NOT_DISCRIMINATING = "rejected: no longer discriminating"
+OUTSIDE_CONSTRAINTS = "rejected: outside the pairs file's constraints"
 BUDGET_SPENT = "not simulated: the shrink budget is spent"
 
 
@@ -101,6 +103,11 @@ class Trials:
 
     def __call__(self, offset: Offset) -> str:
         placement = perturbed(self.witness, offset)
+        # The witness itself meets them (the solver's, or a seed `plans.avoid_for` kept).
+        constraints = self.setting.spec.constraints
+        if offset != Offset() and not admits(constraints, obstacle_variables(placement.obstacle)):
+            self.rejections.add(offset)
+            raise Untested(OUTSIDE_CONSTRAINTS)
         if not discriminates(self.scene, placement, self.sizes):
             self.rejections.add(offset)
             raise Untested(NOT_DISCRIMINATING)

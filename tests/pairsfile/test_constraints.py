@@ -21,6 +21,8 @@ from pytest_lasertest.pairsfile.constraints import (
     Not,
     Number,
     Variable,
+    admits,
+    obstacle_variables,
     parse_formula,
     read_constraint,
 )
@@ -168,3 +170,30 @@ def test_a_huge_integer_literal_is_refused_as_not_finite() -> None:
 @pytest.mark.parametrize("text", ["x / -0 > 1", "x / (1 - 1) > 0"])
 def test_dividing_by_an_expression_equal_to_zero_is_refused(text: str) -> None:
     assert "division by zero" in refusal(text).problem
+
+
+@pytest.mark.parametrize(
+    ("text", "x", "y", "admitted"),
+    [
+        ("x > 2 and abs(y) < 1", 2.5, -0.5, True),
+        ("x > 2 and abs(y) < 1", 2.5, -1.5, False),
+        ("not (x < 1 or y > 3)", 1.0, 3.0, True),
+        ("max(x, 2 * y) <= 4 - 1", 3.0, 1.5, True),
+        ("max(x, 2 * y) <= 4 - 1", 3.0, 1.6, False),
+        ("x / 2 != -y", 2.0, -1.0, False),
+    ],
+)
+def test_a_placement_is_admitted_only_if_it_meets_every_constraint(
+    text: str, x: float, y: float, admitted: bool
+) -> None:
+    constraints = (read_constraint(node(text)), read_constraint(node("height >= 0.1")))
+    variables = {"x": x, "y": y, "yaw": 0.0, "size": 0.1, "height": 0.5}
+    assert admits(constraints, variables) is admitted
+
+
+def test_a_cylinders_size_is_its_diameter_and_a_boxs_its_longer_side() -> None:
+    from pytest_lasertest.model.obstacles import Box, Cylinder
+
+    assert obstacle_variables(Cylinder(1.0, 2.0, 0.1, 0.5))["size"] == pytest.approx(0.2)
+    box = obstacle_variables(Box(1.0, 2.0, 0.3, 0.4, 0.2, 0.5))
+    assert (box["size"], box["yaw"]) == (0.4, 0.3)
