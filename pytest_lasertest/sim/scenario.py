@@ -162,12 +162,12 @@ class _Runner:
             if self._scans_at(step) > measured_scans:
                 self._pending.append(self._measure(measured_scans, time, pose))
                 measured_scans += 1
-            if self._pending and self._pending[0].stamp <= time + 1e-9:
-                while self._pending and self._pending[0].stamp <= time + 1e-9:
-                    self._latest = self._pending.popleft()
-                    command = Twist(*self._call(self._latest, time, pose, measured))
-                    scans += 1
-            elif ticks and self._latest is not None:
+            arrived = self._arrived(time)
+            for scan in arrived:  # each scan whose stamp has come, oldest first
+                self._latest = scan
+                command = Twist(*self._call(scan, time, pose, measured))
+                scans += 1
+            if not arrived and ticks and self._latest is not None:
                 command = Twist(*self._call(self._latest, time, pose, measured))
             left, right = self.drive.wheel_speeds(command, measured, scenario.time_step)
             world.step(left, right)
@@ -200,6 +200,13 @@ class _Runner:
         while self._next_tick <= time + 1e-9:
             self._next_tick += 1.0 / frequency
         return True
+
+    def _arrived(self, time: float) -> list[LaserScan]:
+        """The measured scans whose stamps have come by `time` s, taken off the queue."""
+        arrived = []
+        while self._pending and self._pending[0].stamp <= time + 1e-9:
+            arrived.append(self._pending.popleft())
+        return arrived
 
     def _scans_at(self, step: int) -> int:
         """How many scans the scanner has taken by the start of this step."""
