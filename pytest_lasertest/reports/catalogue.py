@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from pytest_lasertest.model.driver import Driver
 from pytest_lasertest.model.sensor import LaserProfile
 
 
@@ -21,6 +22,8 @@ class ModelFigures:
     range_max_m: float
     update_rate_hz: float
     noise_stddev_m: float | None
+    no_return: str  # how its driver publishes a beam that met nothing (model/driver.py)
+    stamp: str  # the sweep instant its driver stamps, and how much later
 
     @classmethod
     def of(cls, model: str, name: str, profile: LaserProfile) -> ModelFigures:
@@ -34,6 +37,8 @@ class ModelFigures:
             range_max_m=profile.range_max,
             update_rate_hz=profile.update_rate,
             noise_stddev_m=profile.noise.stddev if profile.noise else None,
+            no_return=profile.driver.no_return,
+            stamp=_stamp(profile.driver),
         )
 
     def cells(self) -> tuple[str, ...]:
@@ -46,6 +51,8 @@ class ModelFigures:
             f"{self.range_min_m:g}-{self.range_max_m:g}",
             f"{self.update_rate_hz:g}",
             noise,
+            self.no_return,
+            self.stamp,
             self.name,
         )
 
@@ -58,8 +65,16 @@ CATALOGUE_HEADER = (
     "range m",
     "rate Hz",
     "noise mm",
+    "no return",
+    "stamp",
     "name",
 )
+
+
+def _stamp(driver: Driver) -> str:
+    """`start`, or `end`, with what the driver adds to it in ms."""
+    added = f" +{driver.latency * 1e3:.1f} ms" if driver.latency else ""
+    return f"{driver.stamp}{added}"
 
 
 def catalogue_table(rows: list[ModelFigures]) -> str:

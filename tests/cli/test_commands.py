@@ -38,6 +38,7 @@ def test_the_catalogue_lists_the_real_scanners_with_their_figures(
     rows = {line.split()[0]: line for line in lines[1:]}
     assert rows.keys() >= REQUIRED_MODELS
     assert rows["sick_lms111"].split()[1:6] == ["270", "541", "0.500", "0.5-20", "50"]
+    assert rows["hokuyo_ust_10lx"].split()[7:11] == ["nan", "end", "+3.1", "ms"]
 
 
 def test_the_catalogue_as_json_gives_every_number(capsys: pytest.CaptureFixture[str]) -> None:
@@ -54,6 +55,9 @@ def test_the_catalogue_as_json_gives_every_number(capsys: pytest.CaptureFixture[
         "range_max_m": 3.5,
         "update_rate_hz": 5.0,
         "noise_stddev_m": None,
+        # hls_lfcd_lds_driver: 0.0 for no return, stamped once the whole turn is read.
+        "no_return": "zero",
+        "stamp": "end",
     }
 
 
