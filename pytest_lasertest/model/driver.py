@@ -2,12 +2,12 @@
 
 Two scanners with the same beams can still publish different scans. REP 117 says a reading with
 no return is +inf and one nearer than range_min is -inf, and Gazebo's ray sensor publishes so;
-real drivers publish NaN (urg_node before PR #8), 0.0 (hokuyo_node #5, SICK multiScan) or
-range_max (cob_sick_s300, Webots before PR #2509), set range_max per scan to the largest reading
-(sick_scan_xd #509), turn the wrong way round (rplidar_ros #55), or stamp a scan later than it was
-measured (navigation2 #3352). Each of these is harmless to one consumer and breaks another, so a
-profile holds its driver, and `publish` turns what the scanner measured into what the driver
-publishes, before any navigation stack sees it.
+real drivers publish NaN (urg_node, whose PR #8 asked for +inf), 0.0 (hokuyo_node #5, SICK
+multiScan) or range_max (cob_sick_s300, Webots before PR #2509), set range_max per scan to the
+largest reading (sick_scan_xd #509), turn the wrong way round (rplidar_ros #55), or stamp a scan
+later than it was measured (navigation2 #3352). Each of these is harmless to one consumer and
+breaks another, so a profile holds its driver, and `publish` turns what the scanner measured
+into what the driver publishes, before any navigation stack sees it.
 
 Time: a scan's sweep starts at its measurement instant (the simulator casts it there, at one
 pose: Gazebo's sensor casts a scan at one instant). A driver's stamp is `latency` seconds after
@@ -65,7 +65,8 @@ class Driver:
             value = getattr(self, name)
             if value not in allowed:
                 choices = ", ".join(allowed)
-                raise ProfileError(f"driver.{name}", f"{value!r} is not one of {choices}", choices)
+                fix = f"write one of: {choices}"
+                raise ProfileError(f"driver.{name}", f"{value!r} is not one of {choices}", fix)
         if not (math.isfinite(self.latency) and 0.0 <= self.latency <= MAX_LATENCY):
             raise ProfileError(
                 "driver.latency",
@@ -76,10 +77,6 @@ class Driver:
     def delay(self, scan_time: float) -> float:
         """How long after its measurement instant a scan is stamped and delivered (s)."""
         return self.latency + (scan_time if self.stamp == "end" else 0.0)
-
-    @property
-    def is_default(self) -> bool:
-        return self == DEFAULT_DRIVER
 
 
 DEFAULT_DRIVER = Driver()
