@@ -14,19 +14,9 @@ import pytest
 
 from pytest_lasertest.cli import main
 from pytest_lasertest.inputs.inferred import LATENCY_NOTE, profile_from_bag
-from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.pairsfile import load_pairs_file
-from tests.helpers.bags import laser_scans, write_bag
-
-HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.44023), (3.14159, 0.0, 0.0))
-PAIRS = """\
-robot: husky
-world: {start: {x: 0, y: 0}, goal: {x: 5, y: 0}, time_limit: 30}
-pairs:
-  recorded:
-    baseline: {model: hokuyo_ust_10lx}
-    candidate:
-"""
+from tests.helpers.bags import RECORDED_PAIR, laser_scans, write_bag
+from tests.helpers.model import HUSKY_MOUNT
 
 
 @pytest.fixture
@@ -64,7 +54,7 @@ def test_what_profile_bag_prints_pasted_into_a_pairs_file_gives_the_profile_it_i
 ) -> None:
     assert main(["profile", "--bag", "front"]) == 0
     pasted = textwrap.indent(capsys.readouterr().out, " " * 6)
-    (tmp_path / "gate.lasertest.yaml").write_text(PAIRS + pasted)
+    (tmp_path / "gate.lasertest.yaml").write_text(RECORDED_PAIR + pasted)
     candidate = load_pairs_file(tmp_path / "gate.lasertest.yaml").pairs[0].candidate.profile
     inferred = profile_from_bag(bag).profile
     assert candidate == dataclasses.replace(inferred, pose=HUSKY_MOUNT)

@@ -144,3 +144,14 @@ def _message(store: Typestore, scan: RecordedScan, *, ros1: bool) -> object:
         ranges=scan.ranges,
         intensities=np.zeros(0, dtype=np.float32),
     )
+
+
+# A pairs file whose candidate is left to the test: what follows `candidate:` (line 6).
+RECORDED_PAIR = """\
+robot: husky
+world: {start: {x: 0, y: 0}, goal: {x: 5, y: 0}, time_limit: 30}
+pairs:
+  recorded:
+    baseline: {model: hokuyo_ust_10lx}
+    candidate:
+"""

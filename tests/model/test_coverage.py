@@ -18,9 +18,8 @@ from pytest_lasertest.model.coverage import (
 )
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.sensor import GaussianNoise, LaserProfile
-from tests.helpers.model import profile
+from tests.helpers.model import HUSKY_MOUNT, profile
 
-HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.44023), (3.14159, 0.0, 0.0))
 PAPER_SIZE = 0.0507  # m, the paper's "size" pole
 MAX_SPEED = 1.0  # m/s
 

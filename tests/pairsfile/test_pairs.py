@@ -11,9 +11,8 @@ from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.model.geometry import Point2D, Pose2D, Pose3D
 from pytest_lasertest.pairsfile import load_pairs_file
 from tests.helpers import EXAMPLES
+from tests.helpers.model import HUSKY_MOUNT
 from tests.helpers.texts import VALID_PAIRS
-
-HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.44023), (3.14159, 0.0, 0.0))
 
 
 def write(tmp_path: Path, text: str) -> Path:

@@ -14,19 +14,11 @@ from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.inputs.inferred import profile_from_bag
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.pairsfile import load_pairs_file
-from tests.helpers.bags import laser_scans, write_bag
+from tests.helpers.bags import RECORDED_PAIR, laser_scans, write_bag
+from tests.helpers.model import HUSKY_MOUNT
 
-HUSKY_MOUNT = Pose3D((0.337, 0.0, 0.44023), (3.14159, 0.0, 0.0))
 # Line numbers matter: the candidate's `bag:` is on line 7.
-RECORDED = """\
-robot: husky
-world: {start: {x: 0, y: 0}, goal: {x: 5, y: 0}, time_limit: 30}
-pairs:
-  recorded:
-    baseline: {model: hokuyo_ust_10lx}
-    candidate:
-      bag: {path: recordings/front, topic: /scan}
-"""
+RECORDED = RECORDED_PAIR + "      bag: {path: recordings/front, topic: /scan}\n"
 
 
 @pytest.fixture
