@@ -31,7 +31,7 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Sequence
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -46,6 +46,7 @@ from pytest_lasertest.model.driver import (
     Encoding,
     RangeMax,
     Stamp,
+    differing,
 )
 from pytest_lasertest.model.sensor import LaserProfile, ProfileError
 
@@ -85,10 +86,8 @@ def profile_fields(profile: LaserProfile) -> dict[str, object]:
         "range.max": profile.range_max,
         "update_rate": profile.update_rate,
     }
-    for item in fields(Driver):
-        value = getattr(profile.driver, item.name)
-        if value != getattr(DEFAULT_DRIVER, item.name):
-            written[f"driver.{item.name}"] = value
+    for trait in differing(DEFAULT_DRIVER, profile.driver):
+        written[f"driver.{trait}"] = getattr(profile.driver, trait)
     return written
 
 

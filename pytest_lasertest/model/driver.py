@@ -66,7 +66,7 @@ class Driver:
             if value not in allowed:
                 choices = ", ".join(allowed)
                 fix = f"write one of: {choices}"
-                raise ProfileError(f"driver.{name}", f"{value!r} is not one of {choices}", fix)
+                raise ProfileError(f"driver.{name}", f"{value!r} is not a choice here", fix)
         if not (math.isfinite(self.latency) and 0.0 <= self.latency <= MAX_LATENCY):
             raise ProfileError(
                 "driver.latency",
@@ -113,22 +113,29 @@ def _value(encoding: Encoding, range_min: float, range_max: float) -> float:
     }[encoding]
 
 
+def differing(first: Driver, second: Driver) -> tuple[str, ...]:
+    """The traits (Driver's field names) in which two drivers publish differently."""
+    return tuple(
+        item.name
+        for item in fields(Driver)
+        if getattr(first, item.name) != getattr(second, item.name)
+    )
+
+
 def differences(baseline: Driver, candidate: Driver) -> tuple[tuple[str, str], ...]:
     """Each trait the candidate's driver publishes differently from the baseline's: its name,
     and in words what the candidate publishes and what that does downstream."""
     return tuple(
-        (item.name, _consequence(item.name, getattr(candidate, item.name)))
-        for item in fields(Driver)
-        if getattr(baseline, item.name) != getattr(candidate, item.name)
+        (trait, _consequence(trait, getattr(candidate, trait)))
+        for trait in differing(baseline, candidate)
     )
 
 
 def describe(driver: Driver) -> str:
     """The driver's traits that differ from Gazebo's, in words, or that it publishes as Gazebo."""
     traits = [
-        f"{_WORDS[item.name]} {_say(item.name, getattr(driver, item.name))}"
-        for item in fields(Driver)
-        if getattr(driver, item.name) != getattr(DEFAULT_DRIVER, item.name)
+        f"{_WORDS[trait]} {_say(trait, getattr(driver, trait))}"
+        for trait in differing(DEFAULT_DRIVER, driver)
     ]
     return "; ".join(traits) or "publishes as Gazebo's ray sensor (REP 117)"
 

@@ -37,7 +37,7 @@ def coverage_properties(comparison: CoverageComparison) -> list[tuple[str, objec
         *(
             (
                 f"lasertest.{change.attribute}",
-                f"{_value(change.baseline)} -> {_value(change.candidate)} {change.unit}".rstrip(),
+                _values(change),
             )
             for change in comparison.changes
         ),
@@ -45,10 +45,13 @@ def coverage_properties(comparison: CoverageComparison) -> list[tuple[str, objec
 
 
 def _change_line(change: CoverageChange) -> str:
-    values = f"{_value(change.baseline)} -> {_value(change.candidate)} {change.unit}".rstrip()
-    return f"    {change.attribute}: {values}; {change.detail}"
+    return f"    {change.attribute}: {_values(change)}; {change.detail}"
 
 
-def _value(value: float | str) -> str:
-    """A figure as %g, a driver's choice as it is written."""
-    return value if isinstance(value, str) else f"{value:g}"
+def _values(change: CoverageChange) -> str:
+    """`baseline -> candidate unit`: figures as %g, a driver's choices as they are written."""
+    before, after = (
+        value if isinstance(value, str) else f"{value:g}"
+        for value in (change.baseline, change.candidate)
+    )
+    return f"{before} -> {after} {change.unit}".rstrip()

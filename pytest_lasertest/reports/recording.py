@@ -9,8 +9,11 @@ the stamps tell nothing, `driver` holds only the traits that are not Gazebo's.
 
 from __future__ import annotations
 
+import math
 import textwrap
 from pathlib import Path
+
+import yaml
 
 from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.inputs.inferred import InferredProfile, profile_fields
@@ -41,11 +44,15 @@ def recording_yaml(inferred: InferredProfile, path: Path) -> str:
     ]
     comments = [_comment(text, "# ", "# ") for text in header]
     comments += [_comment(note, "# - ", "#   ") for note in inferred.notes]
-    body = [
-        f"{key}: {_flow(value) if isinstance(value, dict) else _scalar(value)}"
-        for key, value in _nested(profile_fields(inferred.profile)).items()
-    ]
-    return "\n".join([*comments, *body])
+    # Groups in flow style (`range: {min: 0.1, max: 30.0}`), as pairs files write them; PyYAML
+    # writes floats that it reads back as floats (1.0e-05, where 1e-05 would read as text).
+    body = yaml.safe_dump(
+        _nested(profile_fields(inferred.profile)),
+        default_flow_style=None,
+        sort_keys=False,
+        width=math.inf,
+    )
+    return "\n".join([*comments, body.rstrip("\n")])
 
 
 def _nested(flat: dict[str, object]) -> dict[str, object]:
@@ -61,23 +68,6 @@ def _nested(flat: dict[str, object]) -> dict[str, object]:
         else:
             nested[key] = value
     return nested
-
-
-def _flow(group: dict[str, object]) -> str:
-    """`{min: 0.1, max: 30.0}`, as pairs files write groups."""
-    return "{" + ", ".join(f"{key}: {_scalar(value)}" for key, value in group.items()) + "}"
-
-
-def _scalar(value: object) -> str:
-    """A number as YAML 1.1 (PyYAML) reads it back: 1.0e-05, not 1e-05, which it reads as
-    text; the driver's words as they are."""
-    if isinstance(value, float):
-        text = repr(value)
-        mantissa, exponent, power = text.partition("e")
-        if exponent and "." not in mantissa:
-            return f"{mantissa}.0e{power}"
-        return text
-    return str(value)
 
 
 def _comment(text: str, first: str, rest: str) -> str:

@@ -102,7 +102,6 @@ class SearchItem(PairItem):
     def _fail(self, witness: Witness, failed: TrialFailed, trials: Trials, box: OffsetBox) -> None:
         """Record the minimal failure, write its artifacts, and fail the item with it."""
         self.user_properties += failure_properties(failed.result)
-        setting = self.lasertest.setting(self.spec, self.pair, self.controller)
         failure = PlacementFailure(
             self.nodeid,
             self.spec,
@@ -118,7 +117,10 @@ class SearchItem(PairItem):
             # Hypothesis drops what it cannot save without a word: say so, or the rerun misleads.
             unwritable(self._database()),
             # Only a regression is the change's doing, and only then may a trait be to blame.
-            blame_driver(setting, failed.result.placement)
+            blame_driver(
+                self.lasertest.setting(self.spec, self.pair, self.controller),
+                failed.result.placement,
+            )
             if failed.result.classification == "regression"
             else (),
         )
