@@ -1,7 +1,7 @@
-"""The driver examples under Nav2 (Clearpath's A200 parameters with inf_is_valid), as their
-README says: a per-scan range_max and a reversed beam order each fail as a regression, for
-their trait, and their fixed variants pass. Under move_base they run in the main job
-(test_examples.py)."""
+"""The driver examples under Nav2 (Clearpath's A200 parameters without a map), as their README
+says: a no-return published as NaN, 0.0 or range_max, a per-scan range_max and a reversed beam
+order each fail as a regression, for their trait, and their fixed variants pass. Under
+move_base they run in the main job (test_examples.py)."""
 
 from __future__ import annotations
 
@@ -12,17 +12,20 @@ import pytest
 from tests.helpers import EXAMPLES
 
 CASES = {
+    "no_return_nan.lasertest.yaml": ("nan", "no_return"),
+    "no_return_zero.lasertest.yaml": ("zero", "no_return"),
+    "no_return_range_max.lasertest.yaml": ("range_max", "no_return"),
     "range_max_per_scan.lasertest.yaml": ("range_max_per_scan", "range_max"),
     "reversed_beams.lasertest.yaml": ("reversed_beams", "beam_order"),
 }
-UNDER_NAV2 = "controller: nav2\nnavigation:\n  nav2: a200_inf_is_valid.nav2.yaml"
+UNDER_NAV2 = "controller: nav2\nnavigation:\n  nav2: a200_no_map.nav2.yaml"
 
 
-def test_a_per_scan_range_max_and_reversed_beams_fail_under_nav2_and_their_fixes_pass(
+def test_each_driver_case_fails_under_nav2_without_a_map_and_its_fix_passes(
     pytester: pytest.Pytester,
 ) -> None:
     drivers = EXAMPLES / "drivers"
-    shutil.copy(drivers / "a200_inf_is_valid.nav2.yaml", pytester.path)
+    shutil.copy(drivers / "a200_no_map.nav2.yaml", pytester.path)
     for name in CASES:
         text = (drivers / name).read_text()
         assert text.count("controller: move_base") == 1
@@ -33,6 +36,8 @@ def test_a_per_scan_range_max_and_reversed_beams_fail_under_nav2_and_their_fixes
         "--laser-seed=1",
         "--laser-profile=ci",
         "--laser-policy=regression",
+        "-k",
+        "avoid",
         "-n",
         "2",
     )

@@ -105,6 +105,39 @@ def test_nav2_version_picks_the_obstacle_layers_marking_rule(tmp_path: Path) -> 
         assert configure(robot.nav2, robot.nav2_release).settings.marking is marking, release
 
 
+GLOBAL = """\
+global_costmap:
+  global_costmap:
+    ros__parameters:
+      track_unknown_space: true
+      plugins: {plugins}
+      static_layer: {{plugin: "nav2_costmap_2d::StaticLayer"}}
+      obstacle_layer:
+        plugin: "nav2_costmap_2d::ObstacleLayer"
+        observation_sources: scan
+        scan: {{data_type: "LaserScan"}}
+"""
+
+
+@pytest.mark.parametrize(
+    ("plugins", "unknown"),
+    [
+        ('["static_layer", "obstacle_layer"]', False),
+        ('["obstacle_layer"]', True),
+    ],
+    ids=["with-a-map", "without-a-map"],
+)
+def test_the_global_costmap_keeps_unknown_space_only_without_a_static_layer(
+    tmp_path: Path, plugins: str, unknown: bool
+) -> None:
+    # With a static layer the open world's map is known free; without one (Nav2's
+    # nav2_no_map_params.yaml) only what a scan clears is known.
+    team = GLOBAL.format(plugins=plugins)
+    robot = load(tmp_path, team=team).robot  # type: ignore[attr-defined]
+    settings = configure(robot.nav2, robot.nav2_release).settings
+    assert settings.global_.costmap.track_unknown_space is unknown
+
+
 def test_nav2_bringups_own_params_file_sets_jazzys_values() -> None:
     from pytest_lasertest.inputs.errors import Location
     from pytest_lasertest.inputs.node import SpecNode

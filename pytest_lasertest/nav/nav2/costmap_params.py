@@ -39,6 +39,19 @@ def read_costmap(node: NodeParameters, config: CostmapConfig) -> CostmapConfig:
     return _layers(node, config)
 
 
+def has_static_layer(node: NodeParameters) -> bool:
+    """Whether the costmap has an enabled static layer: Costmap2DROS's default plugins
+    (static, obstacle, inflation) do."""
+    plugins = node.names("plugins", ("static_layer",))
+    if "plugins" not in node.values:
+        return True
+    return any(
+        node.text(f"{name}.plugin", "").replace("/", "::") == STATIC_LAYER
+        and node.flag(f"{name}.enabled", True)
+        for name in plugins
+    )
+
+
 def _footprint(
     node: NodeParameters, config: CostmapConfig
 ) -> tuple[tuple[float, float], ...] | None:

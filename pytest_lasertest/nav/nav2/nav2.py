@@ -20,9 +20,10 @@ Nav2's servers do on their clocks:
 Every command passes the velocity smoother (`velocity_smoother.py`), then, each time the
 smoother publishes, the collision monitor (`collision_monitor.py`). What it did that a report
 should name is in `activity`. Where this differs on purpose: without a map, the global costmap
-is a window over the route (as move_base's here), not the map's extent, and it starts free, as
-the static layer of an open field's map would make it (with unknown space, NavFn keeps to the
-cells the scans have cleared, which rays that return nothing never clear); NavFn searches a
+is a window over the route (as move_base's here), not the map's extent; with a static layer it
+starts free, as an open field's map would make it, and without one it may track unknown space
+(NavFn then keeps to the cells the scans have cleared, which rays that return nothing never
+clear); NavFn searches a
 window 5 m around the robot and its goal; goals have no heading. The README lists the rest.
 """
 

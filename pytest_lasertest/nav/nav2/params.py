@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from pytest_lasertest.model.robot import ParameterValue
 from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings
-from pytest_lasertest.nav.nav2.costmap_params import read_costmap
+from pytest_lasertest.nav.nav2.costmap_params import has_static_layer, read_costmap
 from pytest_lasertest.nav.nav2.dwb import CRITICS as DWB_CRITICS
 from pytest_lasertest.nav.nav2.dwb import DwbSettings
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
@@ -195,9 +195,12 @@ def _local_costmap(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings
 
 def _global_costmap(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
     config = read_costmap(node, settings.global_)
-    # The worlds here are open ground: as a static layer would know their map all free.
-    costmap = dataclasses.replace(config.costmap, track_unknown_space=False)
-    return dataclasses.replace(settings, global_=dataclasses.replace(config, costmap=costmap))
+    if has_static_layer(node):
+        # The worlds here are open ground: a static layer knows their map all free. Without
+        # one (Nav2's nav2_no_map_params.yaml) unknown space stays unknown until scanned.
+        costmap = dataclasses.replace(config.costmap, track_unknown_space=False)
+        config = dataclasses.replace(config, costmap=costmap)
+    return dataclasses.replace(settings, global_=config)
 
 
 def _planner_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
