@@ -42,13 +42,12 @@ def read_costmap(node: NodeParameters, config: CostmapConfig) -> CostmapConfig:
 def has_static_layer(node: NodeParameters) -> bool:
     """Whether the costmap has an enabled static layer: Costmap2DROS's default plugins
     (static, obstacle, inflation) do."""
-    plugins = node.names("plugins", ("static_layer",))
     if "plugins" not in node.values:
         return True
     return any(
         node.text(f"{name}.plugin", "").replace("/", "::") == STATIC_LAYER
         and node.flag(f"{name}.enabled", True)
-        for name in plugins
+        for name in node.names("plugins", ())
     )
 
 

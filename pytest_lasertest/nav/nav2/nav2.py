@@ -23,8 +23,8 @@ should name is in `activity`. Where this differs on purpose: without a map, the 
 is a window over the route (as move_base's here), not the map's extent; with a static layer it
 starts free, as an open field's map would make it, and without one it may track unknown space
 (NavFn then keeps to the cells the scans have cleared, which rays that return nothing never
-clear); NavFn searches a
-window 5 m around the robot and its goal; goals have no heading. The README lists the rest.
+clear); NavFn searches a window 5 m around the robot and its goal; goals have no heading. The
+README lists the rest.
 """
 
 from __future__ import annotations
