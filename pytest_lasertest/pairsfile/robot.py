@@ -7,7 +7,7 @@ from pathlib import Path
 
 from pytest_lasertest.inputs.node import Bounds, SpecNode, read_root
 from pytest_lasertest.model.geometry import Pose3D
-from pytest_lasertest.model.robot import Robot, pad_footprint
+from pytest_lasertest.model.robot import HUSKY_BODY, Body, Robot, pad_footprint
 from pytest_lasertest.model.scanner_limits import ProfileError, check_mount
 from pytest_lasertest.pairsfile.bundled import ROBOT_FILE, bundled_robots
 from pytest_lasertest.pairsfile.nav2_params import read_nav2
@@ -15,6 +15,7 @@ from pytest_lasertest.pairsfile.navigation import load_navigation_file
 
 REQUIRED_KEYS = (
     "name",
+    "body",
     "laser_mount",
     "footprint",
     "max_linear_velocity",
@@ -82,6 +83,18 @@ REACTION_TIME = Bounds(
     "no robot reacts before it reads a scan",
     "a robot that reacts 10 s late has driven past anything it saw",
 )  # (0.2)
+# A prism's height: a body the laser's rays pass over, or a tower no wheeled base is.
+BODY_HEIGHT = Bounds(
+    0.01,
+    5.0,
+    "m",
+    "a body this flat is no robot",
+    "no wheeled robot's base stands 5 m high",
+)  # (the Husky's base: 0.39)
+BODY_FIX = (
+    "write `body: husky` (pybullet_data's Husky, driven through its wheels) or `body: {height: H}`"
+    " (a prism of the footprint, H m high, moved at the commanded twist)"
+)
 PADDING = Bounds(
     0.0, 1.0, "m", "costmap_2d pads a footprint outward", "padding is a few centimetres"
 )  # (0.01)
@@ -101,14 +114,16 @@ def load_robot_file(path: Path) -> Robot:
     fields = root.mapping(ROBOT_KEYS, what="robot fields")
     for key in REQUIRED_KEYS:
         if key not in fields:
-            raise root.missing(key, f"a robot file needs {', '.join(REQUIRED_KEYS)}")
+            fix = BODY_FIX if key == "body" else f"a robot file needs {', '.join(REQUIRED_KEYS)}"
+            raise root.missing(key, fix)
     top_speed = fields["max_linear_velocity"].number_in(SPEED)
     top_turn_rate = fields["max_angular_velocity"].number_in(TURN_RATE)
     padding = _optional(fields, "footprint_padding", PADDING, 0.0)
+    footprint = _footprint(fields["footprint"])
     robot = Robot(
         name=fields["name"].text(),
         laser_mount=_mount(fields["laser_mount"]),
-        footprint=pad_footprint(_footprint(fields["footprint"]), padding),
+        footprint=pad_footprint(footprint, padding),
         max_linear_velocity=top_speed,
         max_linear_acceleration=fields["max_linear_acceleration"].number_in(ACCELERATION),
         max_angular_velocity=top_turn_rate,
@@ -117,6 +132,7 @@ def load_robot_file(path: Path) -> Robot:
         nominal_turn_rate=_nominal(fields, "nominal_turn_rate", NOMINAL_TURN_RATE, top_turn_rate),
         reaction_time=_optional(fields, "reaction_time", REACTION_TIME, DEFAULT_REACTION_TIME),
         navigation=load_navigation_file(fields["navigation"]) if "navigation" in fields else (),
+        body=_body(fields["body"], footprint),
     )
     return read_nav2(fields, robot)
 
@@ -132,6 +148,18 @@ def _mount(node: SpecNode) -> Pose3D:
     except ProfileError as error:
         raise mount[error.field.split(".")[-1]].error(error.problem, error.fix) from None
     return pose
+
+
+def _body(node: SpecNode, footprint: tuple[tuple[float, float], ...]) -> Body:
+    """The body the simulator drives: the Husky by name, or a prism of the (unpadded) footprint."""
+    if isinstance(node.value, str):
+        if node.text() != "husky":
+            raise node.error(f"{node.value!r} is not a body the simulator has", BODY_FIX)
+        return HUSKY_BODY
+    fields = node.mapping(("height",), what="body fields")
+    if "height" not in fields:
+        raise node.missing("height", BODY_FIX)
+    return Body("prism", footprint, fields["height"].number_in(BODY_HEIGHT))
 
 
 def _optional(fields: dict[str, SpecNode], key: str, bounds: Bounds, default: float) -> float:

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.model.policy import Classification, Policy
+from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.pairsfile import Pair
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.reports.formats import Replay, run_line
@@ -39,6 +40,7 @@ def drive_report(
         headline,
         f"  pair       {pair.name} ({pair.location})",
         controller_line(controller),
+        robot_line(drives.candidate.scenario.robot),
         *details,
         run_line("baseline", pair.baseline.label, drives.baseline),
         run_line("candidate", pair.candidate.label, drives.candidate),
@@ -85,6 +87,11 @@ def controller_line(controller: ControllerChoice) -> str:
     `  controller nav2 (from gate.lasertest.yaml:3): Nav2 jazzy: NavFn, MPPI, ...`."""
     stack = f": {controller.stack}" if controller.stack else ""
     return f"  controller {controller.name} ({controller.source}){stack}"
+
+
+def robot_line(robot: Robot) -> str:
+    """`  robot      Clearpath Husky A200: pybullet_data's Husky, driven through its wheels`."""
+    return f"  robot      {robot.name}: {robot.body.describe()}"
 
 
 def drive_properties(drives: PairDrive) -> list[tuple[str, object]]:

@@ -28,7 +28,7 @@ from pytest_lasertest.model.verify import (
 )
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
-from pytest_lasertest.reports.drive import MEANINGS, controller_line, run_properties
+from pytest_lasertest.reports.drive import MEANINGS, controller_line, robot_line, run_properties
 from pytest_lasertest.reports.formats import Artifacts, Replay, pose_text, run_line, shell_word
 from pytest_lasertest.search.blame import TraitTried, blame_text
 from pytest_lasertest.search.offsets import AXES, OffsetBox
@@ -82,6 +82,7 @@ def failure_report(failure: PlacementFailure, replay: Replay, artifacts: Artifac
         f"{failure.witness.id}: {MEANINGS[result.classification]}",
         f"  pair       {pair.name} ({pair.location})",
         controller_line(failure.controller),
+        robot_line(result.candidate.scenario.robot),
         *oracle_lines(result),
         f"  witness    {failure.witness.placement.obstacle.describe()}",
         f"  minimal    {result.placement.obstacle.describe()}",

@@ -17,6 +17,7 @@ import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, Pose2D
 from pytest_lasertest.model.obstacles import Box, Obstacle
+from pytest_lasertest.model.robot import HUSKY_BODY, Body
 
 # PyBullet's table of physics clients: ids run from 0 to this, and are reused once disconnected.
 MAX_CLIENTS = 1024
@@ -38,6 +39,10 @@ WHEEL_TORQUES = (WHEEL_TORQUE,) * len(WHEELS)
 # grip so hard that the turn rate jumps with the wheel speeds (0.4 rad/s for 0.25 commanded, 2.3
 # for 1.0); friction along the axle scaled by this factor lets them slide and the rate follow.
 TYRE_SIDEWAYS_FRICTION = 0.05
+# A prism body: its mass only sets how hard it pushes what it meets (the Husky's base, about).
+PRISM_MASS = 50.0  # kg
+# Inertia about its roll and pitch axes, so large that a push low or high does not tip it.
+UNTIPPABLE = 1.0e6  # kg m^2
 
 
 def load_pybullet() -> ModuleType:
@@ -82,8 +87,9 @@ class PhysicsClient:
 
 
 class PhysicsWorld:
-    """The ground, pybullet_data's Husky (fixed links merged) and static obstacles, in one DIRECT
-    client stepped at a fixed time step.
+    """The ground, the robot's body (pybullet_data's Husky with its fixed links merged, or a
+    prism of its footprint) and static obstacles, in one DIRECT client stepped at a fixed time
+    step.
 
     The world is built in `client`, reset for it, or in a client of its own. Use it as a
     context manager: on exit it disconnects a client of its own, and leaves a borrowed one
@@ -96,6 +102,7 @@ class PhysicsWorld:
         obstacles: Sequence[Obstacle],
         time_step: float,
         client: PhysicsClient | None = None,
+        body: Body = HUSKY_BODY,
     ) -> None:
         self._pybullet = load_pybullet()
         self._borrowed = client is not None
@@ -105,7 +112,10 @@ class PhysicsWorld:
             if self._borrowed:
                 self._pybullet.resetSimulation(physicsClientId=self._client)
             self._setup(time_step)
-            self.robot = self._load_husky(start)
+            self.body = body
+            self.robot = (
+                self._load_husky(start) if body.kind == "husky" else self._load_prism(start)
+            )
             self.obstacles = tuple(self._add_obstacle(obstacle) for obstacle in obstacles)
             self._circles = [(o.x, o.y, o.bounding_radius) for o in obstacles]
             self._reach = self._robot_reach(start)
@@ -144,6 +154,19 @@ class PhysicsWorld:
             physicsClientId=self._client,
         )
         pybullet.stepSimulation(physicsClientId=self._client)
+
+    def glide(self, linear: float, angular: float, yaw: float) -> None:
+        """Move a prism body at this twist (m/s forward, rad/s), heading `yaw` (rad), for one
+        time step: it slides on the ground and stops where it meets something."""
+        pybullet, client = self._pybullet, self._client
+        vertical = pybullet.getBaseVelocity(self.robot, physicsClientId=client)[0][2]
+        pybullet.resetBaseVelocity(
+            self.robot,
+            (linear * math.cos(yaw), linear * math.sin(yaw), vertical),
+            (0.0, 0.0, angular),
+            physicsClientId=client,
+        )
+        pybullet.stepSimulation(physicsClientId=client)
 
     def base_pose(self) -> FloatArray:
         """The robot's base_footprint in the world plane, [x, y, yaw] (m, m, rad)."""
@@ -240,6 +263,33 @@ class PhysicsWorld:
                 anisotropicFriction=(1.0, TYRE_SIDEWAYS_FRICTION, 1.0),
                 physicsClientId=self._client,
             )
+        return robot
+
+    def _load_prism(self, start: Pose2D) -> int:
+        """The footprint raised to the body's height, its base frame on the ground under its
+        origin, sliding without friction."""
+        pybullet, client, body = self._pybullet, self._client, self.body
+        corners = [(x, y, z) for z in (0.0, body.height) for x, y in body.outline]
+        shape = pybullet.createCollisionShape(
+            pybullet.GEOM_MESH, vertices=corners, physicsClientId=client
+        )
+        robot: int = pybullet.createMultiBody(
+            baseMass=PRISM_MASS,
+            baseCollisionShapeIndex=shape,
+            basePosition=(start.x, start.y, DROP_HEIGHT),
+            baseOrientation=pybullet.getQuaternionFromEuler((0.0, 0.0, start.yaw)),
+            baseInertialFramePosition=(0.0, 0.0, body.height / 2.0),
+            physicsClientId=client,
+        )
+        twist_inertia = pybullet.getDynamicsInfo(robot, -1, physicsClientId=client)[2][2]
+        pybullet.changeDynamics(
+            robot,
+            -1,
+            lateralFriction=0.0,
+            localInertiaDiagonal=(UNTIPPABLE, UNTIPPABLE, twist_inertia),
+            physicsClientId=client,
+        )
+        self._join(robot, ROBOT_GROUP)
         return robot
 
     def _robot_reach(self, start: Pose2D) -> float:

@@ -1,5 +1,6 @@
 """The drive: a commanded twist, limited as the Husky's velocity controller limits it, turned
-into wheel speeds that reach it on PyBullet's skid-steer contact.
+into wheel speeds that reach it on PyBullet's skid-steer contact (or, for a body without wheels,
+driven as it is).
 
 The Husky steers by driving its left and right wheels at different speeds and letting the tyres
 slide sideways. Wheel speeds from the URDF's geometry miss the commanded twist (8 % too fast
@@ -49,18 +50,16 @@ class Drive:
         self._target = (0.0, 0.0)  # m/s, rad/s
         self._correction = (0.0, 0.0)  # m/s, rad/s
 
+    def twist(self, command: Twist, step: float) -> tuple[float, float]:
+        """The twist (m/s, rad/s) to drive for the next `step` seconds: the command within the
+        robot's speeds, reached within its accelerations."""
+        self._ramp(command, step)
+        return self._target
+
     def wheel_speeds(self, command: Twist, measured: Twist, step: float) -> tuple[float, float]:
         """Left and right wheel speeds (rad/s) for the next `step` seconds."""
-        robot = self.robot
-        limited = (
-            _clamp(command.linear, robot.max_linear_velocity),
-            _clamp(command.angular, robot.max_angular_velocity),
-        )
+        limited = self._ramp(command, step)
         linear, angular = self._target
-        self._target = linear, angular = (
-            linear + _clamp(limited[0] - linear, robot.max_linear_acceleration * step),
-            angular + _clamp(limited[1] - angular, robot.max_angular_acceleration * step),
-        )
         # Only a steady error is the loop's to remove: while the target ramps, the robot lags it
         # by design, and integrating that lag would overshoot.
         gain = self.wheels.gain * step if self._target == limited else 0.0
@@ -75,6 +74,20 @@ class Drive:
             (linear - angular * half_track) / self.wheels.radius,
             (linear + angular * half_track) / self.wheels.radius,
         )
+
+    def _ramp(self, command: Twist, step: float) -> tuple[float, float]:
+        """Move the target toward the command within the limits; the command, limited."""
+        robot = self.robot
+        limited = (
+            _clamp(command.linear, robot.max_linear_velocity),
+            _clamp(command.angular, robot.max_angular_velocity),
+        )
+        linear, angular = self._target
+        self._target = (
+            linear + _clamp(limited[0] - linear, robot.max_linear_acceleration * step),
+            angular + _clamp(limited[1] - angular, robot.max_angular_acceleration * step),
+        )
+        return limited
 
 
 def _clamp(value: float, limit: float) -> float:

@@ -75,7 +75,9 @@ class Run:
     times: FloatArray  # (T,) s, at the end of each step
     poses: FloatArray  # (T, 3) base_footprint [x, y, yaw], m, m, rad
     commands: FloatArray  # (T, 2) the command being driven [forward m/s, turn rad/s]
-    wheels: FloatArray  # (T, 2) the wheel speeds that drove it [left, right], rad/s
+    # (T, 2) what drove the body: the Husky's wheel speeds [left, right] (rad/s), or the
+    # twist a prism moved at [forward m/s, turn rad/s]
+    wheels: FloatArray
     scans: int  # how many scans the controller was given
     verdicts: Verdicts
     # What the controller said it did, (s, what): a navigation stack's recoveries, say.
@@ -117,7 +119,8 @@ def run_scenario(
         with guard:
             guard.make(scenario.robot, scenario.route)
             start, obstacles = scenario.start, scenario.obstacles
-            with PhysicsWorld(start, obstacles, scenario.time_step, client) as world:
+            body = scenario.robot.body
+            with PhysicsWorld(start, obstacles, scenario.time_step, client, body) as world:
                 return _Runner(scenario, world, guard).run()
     except Faulted as faulted:
         # What the controller raised, if it raised, is the cause: --fulltrace shows it.
@@ -169,12 +172,11 @@ class _Runner:
                 scans += 1
             if not arrived and ticks and self._latest is not None:
                 command = Twist(*self._call(self._latest, time, pose, measured))
-            left, right = self.drive.wheel_speeds(command, measured, scenario.time_step)
-            world.step(left, right)
+            driven = self._drive(command, measured, yaw)
             time += scenario.time_step
             pose = world.base_pose()
             x, y, yaw = pose.tolist()
-            rows.append((time, x, y, yaw, command.linear, command.angular, left, right))
+            rows.append((time, x, y, yaw, command.linear, command.angular, *driven))
             clearance, touching = world.proximity(pose, scenario.rules.clearance_horizon)
             if self.referee.update(time, x, y, clearance, touching):
                 break
@@ -190,6 +192,18 @@ class _Runner:
             self.referee.verdicts(),
             self.controller.activity(ended),
         )
+
+    def _drive(self, command: Twist, measured: Twist, yaw: float) -> tuple[float, float]:
+        """Step the world once with the body driven toward `command`; what drove it: the
+        Husky's wheel speeds, or the twist a prism moved at."""
+        world, step = self.world, self.scenario.time_step
+        if world.body.kind == "husky":
+            left, right = self.drive.wheel_speeds(command, measured, step)
+            world.step(left, right)
+            return left, right
+        linear, angular = self.drive.twist(command, step)
+        world.glide(linear, angular, yaw)
+        return linear, angular
 
     def _tick_due(self, time: float) -> bool:
         """Whether the controller's own clock (its control_frequency, if it has one) wants a

@@ -74,6 +74,7 @@ max_linear_velocity: 0.8
 max_linear_acceleration: 1.5
 max_angular_velocity: 1.2
 max_angular_acceleration: 3.0
+body: {height: 0.3}
 """
 
 

@@ -430,6 +430,34 @@ ROBOT_CASES = {
         "laser_mount.xyz",
         "the scanner is mounted 5 m below the ground (z = -5 m)",
     ),
+    "no body, never a silent Husky": (
+        "body: {height: 0.3}\n",
+        "",
+        1,
+        "body",
+        "body",
+    ),
+    "a body the simulator does not have": (
+        "body: {height: 0.3}",
+        "body: turtlebot3",
+        8,
+        "body",
+        "'turtlebot3' is not a body the simulator has",
+    ),
+    "a flat body": (
+        "body: {height: 0.3}",
+        "body: {height: 0.0}",
+        8,
+        "body.height",
+        "0 m is below 0.01 m: a body this flat is no robot",
+    ),
+    "a body without its height": (
+        "body: {height: 0.3}",
+        "body: {heigth: 0.3}",
+        8,
+        "body.heigth",
+        "unknown key 'heigth'",
+    ),
 }
 
 
