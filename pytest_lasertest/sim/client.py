@@ -292,16 +292,23 @@ class PhysicsWorld:
         self._join(robot, ROBOT_GROUP)
         return robot
 
-    def _robot_reach(self, start: Pose2D) -> float:
-        """The radius of a circle around base_footprint that holds the whole robot (m)."""
+    def body_bounds(self) -> FloatArray:
+        """The corners of the boxes that hold each of the body's links, aligned with the world's
+        axes, shape (2 L, 3), m."""
         pybullet, client = self._pybullet, self._client
         links = range(-1, pybullet.getNumJoints(self.robot, physicsClientId=client))
-        corners = [
-            corner
-            for link in links
-            for corner in pybullet.getAABB(self.robot, link, physicsClientId=client)
-        ]
-        return max(math.hypot(x - start.x, y - start.y) for x, y, _ in corners)
+        return np.array(
+            [
+                corner
+                for link in links
+                for corner in pybullet.getAABB(self.robot, link, physicsClientId=client)
+            ]
+        )
+
+    def _robot_reach(self, start: Pose2D) -> float:
+        """The radius of a circle around base_footprint that holds the whole robot (m)."""
+        corners = self.body_bounds()
+        return float(np.hypot(corners[:, 0] - start.x, corners[:, 1] - start.y).max())
 
     def _add_obstacle(self, obstacle: Obstacle) -> int:
         """A static body of the obstacle's exact shape, standing on the ground."""

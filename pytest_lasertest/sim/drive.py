@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.sim.client import PhysicsWorld
 
 
 @dataclass(frozen=True)
@@ -88,6 +89,20 @@ class Drive:
             angular + _clamp(limited[1] - angular, robot.max_angular_acceleration * step),
         )
         return limited
+
+
+def drive_step(
+    world: PhysicsWorld, drive: Drive, command: Twist, measured: Twist, yaw: float, step: float
+) -> tuple[float, float]:
+    """Step `world` once with its body driven toward `command`, heading `yaw` (rad); what drove
+    it: the Husky's wheel speeds (rad/s), or the twist a prism moved at (m/s, rad/s)."""
+    if world.body.kind == "husky":
+        left, right = drive.wheel_speeds(command, measured, step)
+        world.step(left, right)
+        return left, right
+    linear, angular = drive.twist(command, step)
+    world.glide(linear, angular, yaw)
+    return linear, angular
 
 
 def _clamp(value: float, limit: float) -> float:

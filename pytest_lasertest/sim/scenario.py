@@ -38,7 +38,7 @@ from pytest_lasertest.model.route import scan_count
 from pytest_lasertest.model.sensor import LaserProfile, LaserScanMeta
 from pytest_lasertest.nav.protocol import ControllerFactory, LaserScan, Odometry
 from pytest_lasertest.sim.client import PhysicsClient, PhysicsWorld
-from pytest_lasertest.sim.drive import Drive, Twist
+from pytest_lasertest.sim.drive import Drive, Twist, drive_step
 from pytest_lasertest.sim.guard import ControllerFault, Faulted, Guard
 from pytest_lasertest.sim.lidar import FlatLidar, noisy, ranges_from_fractions, scan_rays
 from pytest_lasertest.sim.oracles import Referee, Rules, Verdicts
@@ -172,7 +172,7 @@ class _Runner:
                 scans += 1
             if not arrived and ticks and self._latest is not None:
                 command = Twist(*self._call(self._latest, time, pose, measured))
-            driven = self._drive(command, measured, yaw)
+            driven = drive_step(world, self.drive, command, measured, yaw, scenario.time_step)
             time += scenario.time_step
             pose = world.base_pose()
             x, y, yaw = pose.tolist()
@@ -192,18 +192,6 @@ class _Runner:
             self.referee.verdicts(),
             self.controller.activity(ended),
         )
-
-    def _drive(self, command: Twist, measured: Twist, yaw: float) -> tuple[float, float]:
-        """Step the world once with the body driven toward `command`; what drove it: the
-        Husky's wheel speeds, or the twist a prism moved at."""
-        world, step = self.world, self.scenario.time_step
-        if world.body.kind == "husky":
-            left, right = self.drive.wheel_speeds(command, measured, step)
-            world.step(left, right)
-            return left, right
-        linear, angular = self.drive.twist(command, step)
-        world.glide(linear, angular, yaw)
-        return linear, angular
 
     def _tick_due(self, time: float) -> bool:
         """Whether the controller's own clock (its control_frequency, if it has one) wants a

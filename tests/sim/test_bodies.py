@@ -18,7 +18,7 @@ from pytest_lasertest.pairsfile.catalogue import load_catalogue
 from pytest_lasertest.pairsfile.robot import load_robot_file
 from pytest_lasertest.reports.drive import robot_line
 from pytest_lasertest.sim.client import PhysicsWorld
-from pytest_lasertest.sim.drive import Drive, Twist
+from pytest_lasertest.sim.drive import Drive, Twist, drive_step
 from pytest_lasertest.sim.scenario import Scenario, run_scenario
 from tests.helpers.texts import MY_ROBOT
 
@@ -41,10 +41,7 @@ def first_touch(robot: Robot, command: Twist, seconds: float) -> np.ndarray | No
         for _ in range(round(seconds / STEP)):
             pose = world.base_pose()
             measured = Twist(*world.base_twist(float(pose[2])))
-            if robot.body.kind == "husky":
-                world.step(*drive.wheel_speeds(command, measured, STEP))
-            else:
-                world.glide(*drive.twist(command, STEP), float(pose[2]))
+            drive_step(world, drive, command, measured, float(pose[2]), STEP)
             pose = world.base_pose()
             if world.proximity(pose, 1.0)[1]:
                 return pose
