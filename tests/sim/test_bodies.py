@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 
 from pytest_lasertest.model.geometry import Point2D, Pose2D
-from pytest_lasertest.model.obstacles import Box
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 from pytest_lasertest.pairsfile.bundled import bundled_robots
@@ -18,13 +17,10 @@ from pytest_lasertest.pairsfile.catalogue import load_catalogue
 from pytest_lasertest.pairsfile.robot import load_robot_file
 from pytest_lasertest.reports.drive import robot_line
 from pytest_lasertest.sim.client import PhysicsWorld
-from pytest_lasertest.sim.drive import Drive, Twist, drive_step
+from pytest_lasertest.sim.drive import Drive, Twist
 from pytest_lasertest.sim.scenario import Scenario, run_scenario
+from tests.helpers.bodies import STEP, WALL, WALL_FACE, first_touch
 from tests.helpers.texts import MY_ROBOT
-
-STEP = 0.02  # s
-# A wall across the way, its near face 1.9 m ahead of the start.
-WALL = Box(x=2.0, y=0.0, yaw=0.0, length=0.2, width=2.0, height=1.0)
 
 
 @pytest.fixture
@@ -34,33 +30,12 @@ def my_bot(tmp_path: Path) -> Robot:
     return load_robot_file(tmp_path / "robot.yaml")
 
 
-def first_touch(robot: Robot, command: Twist, seconds: float) -> np.ndarray | None:
-    """The body's pose when it first touches WALL, driving `command` from the origin."""
-    drive = Drive(robot)
-    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (WALL,), STEP, body=robot.body) as world:
-        for _ in range(round(seconds / STEP)):
-            pose = world.base_pose()
-            measured = Twist(*world.base_twist(float(pose[2])))
-            drive_step(world, drive, command, measured, float(pose[2]), STEP)
-            pose = world.base_pose()
-            if world.proximity(pose, 1.0)[1]:
-                return pose
-    return None
-
-
 def test_a_prism_body_meets_a_wall_where_its_own_footprint_does(my_bot: Robot) -> None:
     touched = first_touch(my_bot, Twist(0.5, 0.0), 8.0)
     assert touched is not None
     # Its front edge, 0.3 m ahead of its origin, reaches the wall's face at 1.9 m.
-    assert touched[0] == pytest.approx(1.9 - 0.3, abs=0.01)
+    assert touched[0] == pytest.approx(WALL_FACE - 0.3, abs=0.01)
     assert abs(touched[1]) < 0.01
-
-
-def test_the_husky_meets_the_same_wall_with_its_own_longer_body() -> None:
-    husky = load_robot_file(bundled_robots()["husky"])
-    touched = first_touch(husky, Twist(0.5, 0.0), 8.0)
-    assert touched is not None
-    assert touched[0] < 1.9 - 0.45  # the Husky reaches some 0.5 m ahead of base_footprint
 
 
 def test_a_prism_moves_at_the_commanded_twist_held_to_its_limits(my_bot: Robot) -> None:

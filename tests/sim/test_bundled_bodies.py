@@ -1,5 +1,6 @@
 """Each bundled robot's simulated body against its robot file: the body PyBullet holds spans its
-footprint, and a command beyond its limits drives it at its top speed and turn rate."""
+footprint, meets a wall where its footprint does, and a command beyond its limits drives it at
+its top speed and turn rate."""
 
 from __future__ import annotations
 
@@ -12,8 +13,8 @@ from pytest_lasertest.pairsfile.bundled import bundled_robots
 from pytest_lasertest.pairsfile.robot import load_robot_file
 from pytest_lasertest.sim.client import PhysicsWorld
 from pytest_lasertest.sim.drive import Drive, Twist, drive_step
+from tests.helpers.bodies import STEP, WALL_FACE, first_touch
 
-STEP = 0.02  # s
 ROBOTS = {name: load_robot_file(path) for name, path in bundled_robots().items()}
 
 
@@ -52,3 +53,12 @@ def test_a_bundled_robot_drives_at_its_top_speed_and_no_faster(name: str) -> Non
     assert linear == pytest.approx(robot.max_linear_velocity, rel=0.02)
     _, angular = steady_twist(robot, Twist(0.0, 50.0), 4.0)
     assert angular == pytest.approx(robot.max_angular_velocity, rel=0.05)
+
+
+@pytest.mark.parametrize("name", ROBOTS)
+def test_a_bundled_robot_meets_a_wall_where_its_footprint_does(name: str) -> None:
+    robot = ROBOTS[name]
+    touched = first_touch(robot, Twist(min(0.5, robot.max_linear_velocity), 0.0), 15.0)
+    assert touched is not None
+    front = robot.footprint_array()[:, 0].max()  # m ahead of base_footprint, padded
+    assert touched[0] == pytest.approx(WALL_FACE - front, abs=0.02)
