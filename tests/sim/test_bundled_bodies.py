@@ -24,6 +24,12 @@ def extent(world: PhysicsWorld) -> np.ndarray:
     return corners.max(axis=0) - corners.min(axis=0)
 
 
+def outline(robot: Robot) -> np.ndarray:
+    """The robot file's footprint as the body should have it, shape (V, 2), m: a prism's as
+    written, before footprint_padding; the Husky's as written (its padding is 0.01 m)."""
+    return np.array(robot.body.outline) if robot.body.kind == "prism" else robot.footprint_array()
+
+
 def steady_twist(robot: Robot, command: Twist, seconds: float) -> tuple[float, float]:
     """The body's forward speed and turn rate (m/s, rad/s) at the end of `seconds` of `command`."""
     drive = Drive(robot)
@@ -40,10 +46,8 @@ def test_a_bundled_robots_body_spans_its_footprint(name: str) -> None:
     robot = ROBOTS[name]
     with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (), STEP, body=robot.body) as world:
         spans = extent(world)
-    footprint = robot.footprint_array()
-    # The footprint is the body's outline padded by footprint_padding: a few centimetres more.
-    written = footprint.max(axis=0) - footprint.min(axis=0)
-    assert spans == pytest.approx(written, abs=0.05)
+    footprint = outline(robot)
+    assert spans == pytest.approx(footprint.max(axis=0) - footprint.min(axis=0), abs=0.03)
 
 
 @pytest.mark.parametrize("name", ROBOTS)
@@ -60,5 +64,5 @@ def test_a_bundled_robot_meets_a_wall_where_its_footprint_does(name: str) -> Non
     robot = ROBOTS[name]
     touched = first_touch(robot, Twist(min(0.5, robot.max_linear_velocity), 0.0), 15.0)
     assert touched is not None
-    front = robot.footprint_array()[:, 0].max()  # m ahead of base_footprint, padded
+    front = outline(robot)[:, 0].max()  # m ahead of base_footprint
     assert touched[0] == pytest.approx(WALL_FACE - front, abs=0.02)

@@ -78,6 +78,7 @@ class MoveBase:
         self.settings = settings or NavigationSettings.from_parameters(robot.navigation)
         self.route = route
         self.goal_index = 0
+        self.goal_tolerance = self.settings.dwa.xy_goal_tolerance  # m: the goal oracle judges by it
         self.footprint = robot.footprint_array()  # (V, 2) m
         period = 1.0 / self.settings.move_base.controller_frequency  # s
         costmap = self.settings.costmap

@@ -5,8 +5,9 @@ processApproach, src/polygon.cpp getCollisionTime and isPointInside, src/kinemat
 src/scan.cpp; nav2_params.yaml's collision_monitor). Our own numpy code.
 
 The scan's readings with range_min <= r <= range_max (inclusive, unlike the costmap's
-laser_geometry projection) become points in the base frame, if the scanner's height lies
-between the source's min_height and max_height. If min_points of them lie inside the footprint
+laser_geometry projection) become points in the base frame, whatever the scanner's height: a
+scan source reads no min_height or max_height (only a point cloud source does,
+src/pointcloud.cpp). If min_points of them lie inside the footprint
 now, the command becomes zero; else the robot is moved at the command, a simulation step at a
 time up to time_before_collision, and at the first step whose footprint holds min_points, the
 command is scaled by that step's time over time_before_collision.
@@ -32,15 +33,10 @@ class CollisionMonitorSettings:
     time_before_collision: float = 1.2  # s
     simulation_time_step: float = 0.1  # s
     min_points: int = 6
-    min_height: float = 0.15  # m
-    max_height: float = 2.0  # m
 
 
-def scan_points(scan: LaserScan, settings: CollisionMonitorSettings) -> FloatArray:
-    """The scan's readings with range_min <= r <= range_max in the base frame, shape (P, 2) m;
-    none when the scanner's height lies outside the source's heights."""
-    if not settings.min_height <= scan.mount.xyz[2] <= settings.max_height:
-        return np.zeros((0, 2))
+def scan_points(scan: LaserScan) -> FloatArray:
+    """The scan's readings with range_min <= r <= range_max in the base frame, shape (P, 2) m."""
     ranges = np.asarray(scan.ranges)
     kept = (ranges >= scan.meta.range_min) & (ranges <= scan.meta.range_max)
     counted = LaserScan(scan.stamp, np.where(kept, ranges, np.inf), scan.meta, scan.mount)

@@ -114,7 +114,7 @@ class Nav2:
             self._allowed = smoothed
             return smoothed
         if scan.stamp != self._seen[0]:  # between scans the monitor reads the last again
-            self._seen = scan.stamp, scan_points(scan, monitor)
+            self._seen = scan.stamp, scan_points(scan)
         self._allowed = approach(smoothed, self._seen[1], self.footprint, monitor)
         held = self._allowed == (0.0, 0.0) and smoothed != (0.0, 0.0)
         if held and not self._held:

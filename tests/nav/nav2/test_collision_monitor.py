@@ -49,6 +49,10 @@ def test_a_reading_of_exactly_range_max_counts_and_a_no_return_does_not() -> Non
     meta = LaserScanMeta(-0.1, 0.1, 0.1, 0.0, 0.0, 0.1, 5.0)
     mount = Pose3D((0.0, 0.0, 0.4), (0.0, 0.0, 0.0))
     scan = LaserScan(0.0, np.array([5.0, np.inf, 4.0]), meta, mount)
-    assert len(scan_points(scan, SETTINGS)) == 2
+    assert len(scan_points(scan)) == 2
+
+
+def test_a_scan_source_is_read_at_any_height_as_nav2s_scan_source_has_no_heights() -> None:
+    meta = LaserScanMeta(-0.1, 0.1, 0.1, 0.0, 0.0, 0.1, 5.0)
     low = LaserScan(0.0, np.array([5.0, 4.0, 4.0]), meta, Pose3D((0.0, 0.0, 0.1), (0.0, 0.0, 0.0)))
-    assert len(scan_points(low, SETTINGS)) == 0  # below min_height 0.15 m
+    assert len(scan_points(low)) == 3  # 0.1 m up: a point cloud source's min_height, 0.05 m
