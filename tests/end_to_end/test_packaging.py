@@ -128,7 +128,9 @@ def test_the_wheel_ships_the_robots_the_catalogue_and_the_entry_points(tmp_path:
     )
     (wheel,) = tmp_path.glob("pytest_lasertest-*.whl")
     names = set(zipfile.ZipFile(wheel).namelist())
-    assert "pytest_lasertest/robots/husky/robot.yaml" in names
+    for robot in ("husky", "jackal", "turtlebot3_burger", "turtlebot3_waffle"):
+        for part in ("robot", "navigation", "nav2"):
+            assert f"pytest_lasertest/robots/{robot}/{part}.yaml" in names
     assert "pytest_lasertest/py.typed" in names
     assert len([n for n in names if n.startswith("pytest_lasertest/robots/lidars/")]) >= 10
     (entry_points,) = [n for n in names if n.endswith(".dist-info/entry_points.txt")]
