@@ -115,7 +115,7 @@ def main() -> None:
             period = 1.0 / controller.controller_frequency  # s
             steps = round(period / scenario.time_step)
             # The run's own wheel speeds, per step, as long as one control period.
-            bare = bare_physics(scenario, run.wheels, client) / len(run.wheels) * steps
+            bare = bare_physics(scenario, run.driven, client) / len(run.driven) * steps
             update = statistics.median(controller.updates)
             command = statistics.median(controller.commands)
             print(

@@ -93,7 +93,7 @@ def one_run(
     began = time.perf_counter()
     run = run_scenario(scenario, controller, client)
     wall = time.perf_counter() - began
-    bare = bare_physics(scenario, run.wheels, client)
+    bare = bare_physics(scenario, run.driven, client)
     simulated = float(run.times[-1])
     factor, ratio = simulated / wall, wall / bare
     print(

@@ -77,7 +77,7 @@ class Run:
     commands: FloatArray  # (T, 2) the command being driven [forward m/s, turn rad/s]
     # (T, 2) what drove the body: the Husky's wheel speeds [left, right] (rad/s), or the
     # twist a prism moved at [forward m/s, turn rad/s]
-    wheels: FloatArray
+    driven: FloatArray
     scans: int  # how many scans the controller was given
     verdicts: Verdicts
     # What the controller said it did, (s, what): a navigation stack's recoveries, say.

@@ -78,7 +78,7 @@ def test_a_run_of_the_prism_collides_at_its_footprint_and_records_the_twist_it_d
     run = run_scenario(scenario, Ahead)
     assert not run.verdicts.collision.passed
     assert run.poses[-1, 0] == pytest.approx(1.6, abs=0.02)
-    assert np.max(np.abs(run.wheels[:, 0])) == pytest.approx(0.5)  # m/s, not a wheel's rad/s
+    assert np.max(np.abs(run.driven[:, 0])) == pytest.approx(0.5)  # m/s, not a wheel's rad/s
 
 
 def test_each_report_names_the_body_that_ran(my_bot: Robot) -> None:
