@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 from typing import ClassVar, TypeAlias
 
 import numpy as np
+import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FloatArray
 
@@ -243,6 +244,17 @@ def polygon_clearance(polygon: FloatArray, obstacle: Obstacle) -> float:
     before touching the polygon; negative: it must shrink by that much to stop overlapping it.
     """
     return obstacle._polygon_clearance(polygon)
+
+
+def box_holds(box: Box, points: FloatArray) -> npt.NDArray[np.bool_]:
+    """Which points, shape (P, 2) m, lie in the box's footprint (its edges included), (P,)."""
+    cos, sin = math.cos(box.yaw), math.sin(box.yaw)
+    offsets = np.asarray(points, dtype=np.float64) - (box.x, box.y)
+    along, across = offsets @ (cos, sin), offsets @ (-sin, cos)
+    held: npt.NDArray[np.bool_] = (np.abs(along) <= box.length / 2.0) & (
+        np.abs(across) <= box.width / 2.0
+    )
+    return held
 
 
 def _checked_rays(origins: FloatArray, directions: FloatArray) -> tuple[FloatArray, FloatArray]:

@@ -19,6 +19,11 @@ the last scan again (the same object, its stamp unchanged), as a ROS node's time
 between messages. And it may have an `activity`, a list of (time s, text) pairs of
 what it did that a reader of a failure should know (a recovery begun, a safety stop): each
 failing run's report lists them, e.g. `stack did: Spin at t = 12.10 s`.
+
+In a world with walls, a controller with a `receive_map` method is given the world's map once,
+as a nav_msgs/OccupancyGrid (`OccupancyGrid`), after it is made and before its first scan:
+map_server latches /map, so a node that subscribes has it before it drives. A controller
+without one navigates by its scans alone.
 """
 
 from __future__ import annotations
@@ -32,8 +37,17 @@ from typing import Protocol
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose3D
+from pytest_lasertest.model.occupancy import OccupancyGrid
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.sensor import LaserScanMeta
+
+__all__ = [
+    "Controller",
+    "ControllerFactory",
+    "LaserScan",
+    "OccupancyGrid",
+    "Odometry",
+]
 
 _NO_POINTS: FloatArray = np.zeros((0, 2))
 

@@ -33,7 +33,13 @@ import numpy as np
 
 from pytest_lasertest.model.geometry import Point2D
 from pytest_lasertest.model.robot import Robot
-from pytest_lasertest.nav.protocol import Controller, ControllerFactory, LaserScan, Odometry
+from pytest_lasertest.nav.protocol import (
+    Controller,
+    ControllerFactory,
+    LaserScan,
+    OccupancyGrid,
+    Odometry,
+)
 from pytest_lasertest.sim.alarm import Alarm, TimeUp
 
 FLOOR = 5.0  # s of wall-clock time a controller may take beyond the simulated time driven
@@ -137,6 +143,13 @@ class Guard:
             "seconds",
             "how long (s) it may make no progress while still trying, by its own logic",
         )
+
+    def give_map(self, grid: OccupancyGrid) -> None:
+        """Give the controller the world's map, if it has a `receive_map` to take it, before
+        its first scan: map_server latches /map, and a node has it once it subscribes."""
+        receive = self._call("the factory", 0.0, getattr, self._controller, "receive_map", None)
+        if receive is not None:
+            self._call("receive_map", 0.0, receive, grid)
 
     def _figure(self, name: str, unit: str, meaning: str) -> float | None:
         """The controller's optional figure `name`: none, or a positive finite number of

@@ -36,6 +36,7 @@ from pytest_lasertest.model.obstacles import Obstacle
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import scan_count
 from pytest_lasertest.model.sensor import LaserProfile, LaserScanMeta
+from pytest_lasertest.model.walls import Walls
 from pytest_lasertest.nav.protocol import ControllerFactory, LaserScan, Odometry
 from pytest_lasertest.sim.client import PhysicsClient, PhysicsWorld
 from pytest_lasertest.sim.drive import Drive, Twist, drive_step
@@ -65,6 +66,13 @@ class Scenario:
     # Where the rays are cast: PyBullet's rayTestBatch, or the flat ray cast it equals on these
     # scenes of upright obstacles on level ground (tests/sim/test_lidar.py holds them equal).
     caster: Caster = "flat"
+    # The world's walls: static bodies like the obstacles, and the map the controller is given.
+    walls: Walls = field(default_factory=Walls)
+
+    @property
+    def solids(self) -> tuple[Obstacle, ...]:
+        """Everything standing in the world: the obstacles, then the walls."""
+        return self.obstacles + self.walls.boxes
 
 
 @dataclass(frozen=True, eq=False)
@@ -118,7 +126,9 @@ def run_scenario(
     try:
         with guard:
             guard.make(scenario.robot, scenario.route)
-            start, obstacles = scenario.start, scenario.obstacles
+            if scenario.walls.grid is not None:
+                guard.give_map(scenario.walls.grid)
+            start, obstacles = scenario.start, scenario.solids
             body = scenario.robot.body
             with PhysicsWorld(start, obstacles, scenario.time_step, client, body) as world:
                 return _Runner(scenario, world, guard).run()
@@ -143,7 +153,7 @@ class _Runner:
             window = max(rules.stuck_window, controller.stuck_window)
             rules = dataclasses.replace(rules, stuck_window=window)
         self.referee = Referee(rules, start, scenario.route, scenario.time_step)
-        self.lidar = FlatLidar(scenario.profile, scenario.obstacles)
+        self.lidar = FlatLidar(scenario.profile, scenario.solids)
         self.meta = scenario.profile.to_laserscan_meta()
         self._latest: LaserScan | None = None  # the last scan given, for calls between scans
         # Scans measured and not yet delivered, oldest first: each arrives at its stamp.

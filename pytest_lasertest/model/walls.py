@@ -1,0 +1,84 @@
+"""A world's walls: boxes standing on the ground that nobody placed to test anything, and the map
+of them the navigation stack is given.
+
+Walls are what a building has: they block the robot, hide what stands behind them from a
+scanner, and no test obstacle may stand inside one. They come from a map (its occupied cells,
+`occupancy.py`), or from boxes and segments a pairs file lists, which are then drawn into a map
+at MAP_RESOLUTION, as a team would map them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.obstacles import (
+    Box,
+    Obstacle,
+    box_holds,
+    polygon_clearance,
+    ray_distances,
+)
+from pytest_lasertest.model.occupancy import OccupancyGrid, rasterised
+
+# Taller than any scanner is mounted: every scan plane meets a wall.
+WALL_HEIGHT = 2.0  # m
+# The resolution of the map drawn from listed walls: the common one of ROS maps (gmapping's and
+# slam_toolbox's default).
+MAP_RESOLUTION = 0.05  # m per cell
+# How far the drawn map reaches past the walls, so that a costmap's edge is never a wall's.
+MAP_MARGIN = 1.0  # m
+
+
+@dataclass(frozen=True)
+class Walls:
+    """The walls of a world (none: an empty world), and the map of them a static layer reads."""
+
+    boxes: tuple[Box, ...] = ()
+    grid: OccupancyGrid | None = None  # what map_server publishes; None without walls
+
+    def __bool__(self) -> bool:
+        return bool(self.boxes)
+
+    @classmethod
+    def listed(cls, boxes: tuple[Box, ...]) -> Walls:
+        """Walls a pairs file lists, with their map drawn at MAP_RESOLUTION."""
+        if not boxes:
+            return cls()
+        return cls(boxes, rasterised(boxes, MAP_RESOLUTION, MAP_MARGIN))
+
+    @classmethod
+    def mapped(cls, grid: OccupancyGrid) -> Walls:
+        """The walls of a map: its occupied cells, WALL_HEIGHT high."""
+        return cls(grid.wall_boxes(WALL_HEIGHT), grid)
+
+    def reach(self, origins: FloatArray, directions: FloatArray) -> FloatArray:
+        """How far each ray, origins and unit directions shape (R, 2), runs before it meets a
+        wall, shape (R,), m: inf where it meets none, 0 from inside one."""
+        reach = np.full(len(origins), np.inf)
+        for box in self.boxes:
+            reach = np.minimum(reach, ray_distances(origins, directions, box))
+        return reach
+
+    def clearance(self, obstacle: Obstacle) -> float:
+        """How far the obstacle stands from the nearest wall (m; negative: that deep inside
+        one; inf without walls), in the obstacle's own clearance metric."""
+        near = [box for box in self.boxes if _may_touch(box, obstacle)]
+        return min(
+            (polygon_clearance(np.array(box.corners()), obstacle) for box in near),
+            default=math.inf,
+        )
+
+    def holding(self, points: FloatArray) -> list[Box]:
+        """The walls that hold any of the points, shape (P, 2), m."""
+        return [box for box in self.boxes if bool(np.any(box_holds(box, points)))]
+
+
+def _may_touch(box: Box, obstacle: Obstacle) -> bool:
+    """Whether their bounding circles come within a metre (the clearances that matter are
+    millimetres)."""
+    apart = math.hypot(box.x - obstacle.x, box.y - obstacle.y)
+    return apart - box.bounding_radius - obstacle.bounding_radius < 1.0
