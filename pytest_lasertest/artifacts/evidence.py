@@ -7,12 +7,14 @@ system refuses is reported beside the item's failure, and the others are still w
 
 The picture shows the moment the candidate failed: its first collision, the instant it was
 judged stuck, or (when it simply ran out of time) its last pose; both robots' trajectories and
-both scanners' beams at that instant, each from its own robot.
+both scanners' beams at that instant, each from its own robot, among the world's walls. The
+Gazebo world holds the walls too.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
 from pathlib import Path
 
 import numpy as np
@@ -28,6 +30,7 @@ from pytest_lasertest.model.obstacles import Obstacle, ray_distances
 from pytest_lasertest.model.plan import Witness
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.model.verify import Verification
+from pytest_lasertest.model.walls import NO_WALLS, Walls
 from pytest_lasertest.pairsfile import Pair, PairsFile, Scanner
 from pytest_lasertest.pairsfile.placements import PinnedPlacement
 from pytest_lasertest.reports.failure import PlacementFailure
@@ -52,11 +55,12 @@ def write_evidence(directory: Path, failure: PlacementFailure) -> Artifacts:
         "Collect this file on its own to replay it; commit it (or copy its pair into your",
         "pairs file) to keep the case as a regression test.",
     ]
+    walls = failure.spec.world.walls.boxes
     return write_best_effort(
         (
             (png, lambda: draw_failure(failure_figure(failure), png)),
             (repro, lambda: write_repro(repro, failure.spec, failure.pair, pinned, header)),
-            (world, lambda: write_world(world, failure.pair.name, (obstacle,))),
+            (world, lambda: write_world(world, failure.pair.name, (obstacle,), walls)),
             (numbers, lambda: write_json(numbers, evidence_json(failure))),
         )
     )
@@ -87,11 +91,12 @@ def drive_figure(
     title: str, spec: PairsFile, pair: Pair, runs: tuple[Run, Run], obstacle: Obstacle | None
 ) -> FailureFigure:
     """The picture of the candidate's failure in one world, both robots' runs (baseline,
-    candidate) drawn at the moment the candidate failed."""
+    candidate) drawn at the moment the candidate failed, among the world's walls."""
     baseline, candidate = runs
     time, label = failure_moment(candidate)
     candidate_pose, baseline_pose = _pose_at(candidate, time), _pose_at(baseline, time)
     world = spec.world
+    walls = world.walls
     return FailureFigure(
         title=f"{title}, candidate {label}",
         obstacle=obstacle,
@@ -102,19 +107,25 @@ def drive_figure(
         baseline_pose=_triple(baseline_pose),
         beams=(
             beam_fan(
-                f"baseline {pair.baseline.label}", pair.baseline.profile, baseline_pose, obstacle
+                f"baseline {pair.baseline.label}",
+                pair.baseline.profile,
+                baseline_pose,
+                obstacle,
+                walls,
             ),
             beam_fan(
                 f"candidate {pair.candidate.label}",
                 pair.candidate.profile,
                 candidate_pose,
                 obstacle,
+                walls,
             ),
         ),
-        failure=_failure_point(candidate, candidate_pose, obstacle),
+        failure=_failure_point(candidate, candidate_pose, obstacle, walls),
         failure_label=label,
         goal=(world.goal.x, world.goal.y),
         start=(world.start.x, world.start.y),
+        walls=walls.boxes,
     )
 
 
@@ -126,8 +137,9 @@ def write_control_evidence(
     drives: PairDrive,
     run_options: dict[str, object],
 ) -> Artifacts:
-    """The artifacts of a failure in the empty world, each best-effort: the picture, the empty
-    Gazebo world and every number; the item itself replays it."""
+    """The artifacts of a failure in the world without an obstacle, each best-effort: the
+    picture, the Gazebo world with only the walls, and every number; the item itself replays
+    it."""
     png, _, world, numbers = (artifact_path(directory, nodeid, suffix) for suffix in SUFFIXES)
     runs = (drives.baseline, drives.candidate)
     evidence = {
@@ -139,7 +151,7 @@ def write_control_evidence(
     return write_best_effort(
         (
             (png, lambda: draw_failure(figure, png)),
-            (world, lambda: write_world(world, pair.name, ())),
+            (world, lambda: write_world(world, pair.name, (), spec.world.walls.boxes)),
             (numbers, lambda: write_json(numbers, evidence)),
         )
     )
@@ -201,17 +213,23 @@ def _scanner_json(scanner: Scanner) -> dict[str, object]:
 
 
 def beam_fan(
-    label: str, profile: LaserProfile, pose: FloatArray, obstacle: Obstacle | None
+    label: str,
+    profile: LaserProfile,
+    pose: FloatArray,
+    obstacle: Obstacle | None,
+    walls: Walls = NO_WALLS,
 ) -> BeamFan:
-    """The scanner's beams at `pose`, each stopped where it enters the obstacle or at range_max."""
+    """The scanner's beams at `pose`, each stopped where it enters the obstacle, at a wall, or
+    at range_max; an obstacle behind a wall is not read (as `model/verify.py` has it)."""
     origins, directions = (array[0] for array in profile.rays(pose.reshape(1, 3)))
     hits = np.zeros(len(origins), dtype=bool)
     distances = np.full(len(origins), np.inf)
+    reach = walls.reach(origins, directions)  # inf without walls
     if obstacle is not None:
         distances = ray_distances(origins, directions, obstacle)
         hits = (distances >= profile.range_min) & (distances <= profile.range_max)
-        hits &= obstacle.height > profile.scan_height
-    lengths = np.where(hits, distances, profile.range_max)
+        hits &= (distances < reach) & (obstacle.height > profile.scan_height)
+    lengths = np.where(hits, distances, np.minimum(reach, profile.range_max))
     ends = origins + directions * lengths[:, np.newaxis]
     name = f"{label}: {profile.beam_count} beams, {profile.range_max:g} m"
     return BeamFan(name, origins, ends, hits)
@@ -264,11 +282,17 @@ def _pose_at(run: Run, time: float) -> FloatArray:
     return pose
 
 
-def _failure_point(run: Run, pose: FloatArray, obstacle: Obstacle | None) -> tuple[float, float]:
-    """Where the obstacle was touched (its point nearest the robot), else where the robot was."""
-    if run.verdicts.collision.time is None or obstacle is None:
-        return float(pose[0]), float(pose[1])
-    return obstacle.nearest_point(float(pose[0]), float(pose[1]))
+def _failure_point(
+    run: Run, pose: FloatArray, obstacle: Obstacle | None, walls: Walls = NO_WALLS
+) -> tuple[float, float]:
+    """Where the obstacle or a wall was touched (the point of either nearest the robot), else
+    where the robot was."""
+    x, y = float(pose[0]), float(pose[1])
+    solids = (*([] if obstacle is None else [obstacle]), *walls.boxes)
+    if run.verdicts.collision.time is None or not solids:
+        return x, y
+    touched = (solid.nearest_point(x, y) for solid in solids)
+    return min(touched, key=lambda point: math.hypot(point[0] - x, point[1] - y))
 
 
 def _triple(pose: FloatArray) -> tuple[float, float, float]:

@@ -7,6 +7,7 @@ display is needed. This module is imported only when a failure is written.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Any, TypeAlias
@@ -16,7 +17,7 @@ import numpy.typing as npt
 from matplotlib.artist import Artist
 from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.collections import LineCollection
+from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -35,11 +36,15 @@ Pose: TypeAlias = tuple[float, float, float]  # m, m, rad
 BASELINE_COLOUR = "#1f77b4"  # blue
 CANDIDATE_COLOUR = "#d62728"  # red
 OBSTACLE_COLOUR = "#4d4d4d"  # dark grey
+WALL_COLOUR = "#7a7a7a"  # dark grey, lighter than the obstacle's, so one by a wall stands out
 GOAL_COLOUR = "#2ca02c"  # green
 GROUND_COLOUR = "#f2f2f2"  # light grey
 SIZE = (10.0, 7.0)  # inches; 1000 x 700 pixels at DPI
 DPI = 100  # pixels per inch
 PADDING = 1.0  # m, around everything the view must hold
+# Walls within this of the paths, the obstacle and the markers widen the view as far as they
+# reach into it; the rest of a building is cut off at the view's edge.
+WALL_REACH = 2.0  # m
 
 
 @dataclass(frozen=True)
@@ -76,6 +81,7 @@ class FailureFigure:
     failure_label: str  # e.g. "collided at t = 11.82 s" / "stuck at t = 21.22 s"
     goal: tuple[float, float]  # m
     start: tuple[float, float]  # m
+    walls: tuple[Box, ...] = ()  # the world's; none in an empty world
 
 
 def draw_failure(figure: FailureFigure, path: Path) -> Path:
@@ -95,6 +101,7 @@ def build_figure(figure: FailureFigure) -> Figure:
     FigureCanvasAgg(picture)
     axes = picture.add_subplot()
     low, high, step = _frame(axes, figure)
+    walls = [_draw_walls(axes, figure.walls)] if figure.walls else []
     obstacles = [] if figure.obstacle is None else [_draw_obstacle(axes, figure.obstacle)]
     beams, paths, footprints = [], [], []
     for (name, colour, path, pose), fan in zip(_robots(figure), figure.beams, strict=True):
@@ -106,7 +113,7 @@ def build_figure(figure: FailureFigure) -> Figure:
     start, goal, failure = _draw_markers(axes, figure)
     _add_scale_bar(axes, step)
     # Filled column by column: the two long beam labels share the first, so three columns fit.
-    handles: list[Artist] = [*beams, *obstacles, start, *paths, *footprints, goal, failure]
+    handles: list[Artist] = [*beams, *obstacles, *walls, start, *paths, *footprints, goal, failure]
     # Below the axes, so it never hides the obstacle or a path and leaves the view its width.
     picture.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8)
     picture.suptitle(_literal(figure.title), fontsize=10)
@@ -130,8 +137,8 @@ def _robots(figure: FailureFigure) -> tuple[tuple[str, str, FloatArray, Pose], .
 
 def _frame(axes: Axes, figure: FailureFigure) -> tuple[FloatArray, FloatArray, float]:
     """Set the ground, the grid and a first view; returns the view's lower left and upper right
-    corners (m), the box round the paths, the obstacle and the markers, padded, and the grid
-    step (m)."""
+    corners (m), the box round the paths, the obstacle and the markers, padded, and widened to
+    the walls within WALL_REACH of them, and the grid step (m)."""
     points = np.vstack(
         [
             figure.baseline_path,
@@ -140,7 +147,11 @@ def _frame(axes: Axes, figure: FailureFigure) -> tuple[FloatArray, FloatArray, f
             [figure.goal, figure.start, figure.failure],
         ]
     )
-    low, high = points.min(axis=0) - PADDING, points.max(axis=0) + PADDING
+    action_low, action_high = points.min(axis=0), points.max(axis=0)
+    low, high = action_low - PADDING, action_high + PADDING
+    near = _walls_within(figure.walls, action_low - WALL_REACH, action_high + WALL_REACH)
+    if len(near):
+        low, high = np.minimum(low, near.min(axis=0)), np.maximum(high, near.max(axis=0))
     axes.set_xlim(low[0], high[0])
     axes.set_ylim(low[1], high[1])
     step = _nice_length(float(max(high - low)))
@@ -186,6 +197,59 @@ def _outline(obstacle: Obstacle) -> FloatArray:
     offsets = obstacle.radius * np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])
     outline: FloatArray = offsets + np.array([obstacle.x, obstacle.y])
     return outline
+
+
+def _walls_within(walls: Sequence[Box], low: FloatArray, high: FloatArray) -> FloatArray:
+    """The corners of the walls' footprints cut to the box from `low` to `high` (m), shape
+    (P, 2) m: what of them lies inside it."""
+    cut: list[tuple[float, float]] = []
+    for wall in walls:
+        reach = wall.bounding_radius
+        if np.all(low - reach <= (wall.x, wall.y)) and np.all((wall.x, wall.y) <= high + reach):
+            cut.extend(_clipped(list(wall.corners()), low, high))
+    return np.array(cut, dtype=np.float64).reshape(-1, 2)
+
+
+def _clipped(
+    polygon: list[tuple[float, float]], low: FloatArray, high: FloatArray
+) -> list[tuple[float, float]]:
+    """The part of a convex polygon inside the box from `low` to `high` (m), its corners in
+    order; none when it lies outside (Sutherland and Hodgman's clipping, one side at a time)."""
+    for axis in (0, 1):
+        for bound, sign in ((float(low[axis]), -1.0), (float(high[axis]), 1.0)):
+            kept: list[tuple[float, float]] = []
+            for index, point in enumerate(polygon):
+                previous = polygon[index - 1]
+                inside = sign * (point[axis] - bound) <= 0.0
+                was_inside = sign * (previous[axis] - bound) <= 0.0
+                if inside != was_inside:
+                    fraction = (bound - previous[axis]) / (point[axis] - previous[axis])
+                    kept.append(
+                        (
+                            previous[0] + fraction * (point[0] - previous[0]),
+                            previous[1] + fraction * (point[1] - previous[1]),
+                        )
+                    )
+                if inside:
+                    kept.append(point)
+            polygon = kept
+    return polygon
+
+
+def _draw_walls(axes: Axes, walls: Sequence[Box]) -> PolyCollection:
+    """The walls' footprints, filled, beneath everything else; the view cuts off what lies
+    outside it."""
+    # One collection: a map's walls are hundreds of boxes, and the legend names them once.
+    collection = PolyCollection(
+        [wall.corners() for wall in walls],
+        facecolors=WALL_COLOUR,
+        edgecolors="none",
+        label="walls",
+        zorder=2,
+    )
+    # A building must not widen the view: `_frame` takes in only the walls near the action.
+    axes.add_collection(collection, autolim=False)
+    return collection
 
 
 def _draw_obstacle(axes: Axes, obstacle: Obstacle) -> Patch:

@@ -4,6 +4,8 @@ It is the user's own pairs file cut down to the failing case: the robot, world, 
 navigation sections and the pair's two scanners are copied as written (so `model:` overrides read
 as the user wrote them), and the placement is pinned. A scanner read from a robot description is
 written out as the profile it read: its file moves on, and its `ref:` (a branch) moves too.
+Paths to files beside the pairs file (the robot's, the world's `map:`) are rewritten to be found
+from wherever the repro is written.
 Committed, the repro replays the failure as a regression test on every run.
 """
 
@@ -48,6 +50,8 @@ def repro_yaml(
     written = _written(spec)
     document = {key: written[key] for key in COPIED_SECTIONS if key in written}
     document["robot"] = _robot_from(str(written["robot"]), spec.path, destination)
+    if "world" in document:
+        document["world"] = _world_from(document["world"], spec.path, destination)
     document["pairs"] = {pair.name: _pair_mapping(written, pair, pinned)}
     notes = [
         *header,
@@ -145,12 +149,29 @@ def _scanner(written: object, scanner: Scanner) -> object:
 def _robot_from(name: str, original: Path, destination: Path) -> str:
     """`robot:` as it resolves from the destination's directory: a bundled name or an absolute
     path as written, a relative path rewritten relative to where the repro goes."""
-    if name in bundled_robots() or Path(name).is_absolute():
+    if name in bundled_robots():
         return name
-    target = original.parent.resolve() / name
-    relative = Path(os.path.relpath(target, destination.parent.resolve())).as_posix()
+    relative = _relocated(name, original, destination)
     # A relative path that reads as a bundled name would load the bundled robot instead.
     return f"./{relative}" if relative in bundled_robots() else relative
+
+
+def _world_from(world: object, original: Path, destination: Path) -> object:
+    """`world:` as written, its `map:` path, if relative, rewritten relative to where the repro
+    goes."""
+    if not isinstance(world, dict) or not isinstance(world.get("map"), str):
+        return world
+    return {**world, "map": _relocated(world["map"], original, destination)}
+
+
+def _relocated(path: str, original: Path, destination: Path) -> str:
+    """A path written in the pairs file at `original`, as the file at `destination` must write
+    it: an absolute path as written, a relative one rewritten relative to destination's
+    directory."""
+    if Path(path).is_absolute():
+        return path
+    target = original.parent.resolve() / path
+    return Path(os.path.relpath(target, destination.parent.resolve())).as_posix()
 
 
 def _described_notes(pair: Pair) -> list[str]:

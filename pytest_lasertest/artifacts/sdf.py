@@ -1,4 +1,5 @@
-"""A Gazebo world holding a failing item's obstacle, to replay it in the user's own stack.
+"""A Gazebo world holding a failing item's obstacle and its world's walls, to replay it in the
+user's own stack.
 
 SDF 1.6 (Gazebo 9 and later read it). The sun and the ground plane are written inline rather
 than included as `model://sun` and `model://ground_plane`, which need Gazebo's model database:
@@ -21,17 +22,19 @@ STEP = 0.001  # s, the physics step
 GRAVITY = (0.0, 0.0, -9.8)  # m/s^2
 GROUND_SIZE = (100.0, 100.0)  # m
 OBSTACLE_COLOUR = (0.3, 0.3, 0.3, 1.0)  # RGBA, the dark grey of the picture's obstacle
+WALL_COLOUR = (0.48, 0.48, 0.48, 1.0)  # RGBA, the lighter grey of the picture's walls
 GROUND_COLOUR = (0.8, 0.8, 0.8, 1.0)  # RGBA
 
 # Characters XML 1.0 cannot hold, escaped or not.
 _FORBIDDEN = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 
-def world_sdf(name: str, obstacles: Sequence[Obstacle]) -> str:
-    """An SDF 1.6 world: sun, ground plane and one static model per obstacle.
+def world_sdf(name: str, obstacles: Sequence[Obstacle], walls: Sequence[Box] = ()) -> str:
+    """An SDF 1.6 world: sun, ground plane, one static model per obstacle (`obstacle_0`, ...)
+    and one static box per wall (`wall_0`, ...).
 
-    Raises ValueError for a name XML cannot hold, or an obstacle with a size that is not a
-    positive finite number or a position that is not finite.
+    Raises ValueError for a name XML cannot hold, or an obstacle or wall with a size that is not
+    a positive finite number or a position that is not finite.
     """
     if _FORBIDDEN.search(name):
         raise ValueError(f"XML cannot hold the world name {name!r}")
@@ -42,14 +45,18 @@ def world_sdf(name: str, obstacles: Sequence[Obstacle]) -> str:
     _sun(world)
     _ground(world)
     for index, obstacle in enumerate(obstacles):
-        _obstacle(world, f"obstacle_{index}", obstacle)
+        _obstacle(world, f"obstacle_{index}", obstacle, OBSTACLE_COLOUR)
+    for index, wall in enumerate(walls):
+        _obstacle(world, f"wall_{index}", wall, WALL_COLOUR)
     ET.indent(root)
     return '<?xml version="1.0"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
 
 
-def write_world(path: Path, name: str, obstacles: Sequence[Obstacle]) -> Path:
+def write_world(
+    path: Path, name: str, obstacles: Sequence[Obstacle], walls: Sequence[Box] = ()
+) -> Path:
     """Write `world_sdf` at `path` atomically."""
-    return write_text(path, world_sdf(name, obstacles))
+    return write_text(path, world_sdf(name, obstacles, walls))
 
 
 def _physics(world: ET.Element) -> None:
@@ -88,8 +95,11 @@ def _ground(world: ET.Element) -> None:
         _text(plane, "size", _numbers(GROUND_SIZE))
 
 
-def _obstacle(world: ET.Element, name: str, obstacle: Obstacle) -> None:
-    """A static model of the obstacle standing on the ground, its shape as collision and visual."""
+def _obstacle(
+    world: ET.Element, name: str, obstacle: Obstacle, colour: tuple[float, float, float, float]
+) -> None:
+    """A static model of the obstacle (or wall) standing on the ground, its shape as collision
+    and visual."""
     shape, sizes = _shape(obstacle)
     place = (obstacle.x, obstacle.y, obstacle.yaw)
     # `not 0 < size < inf` also rejects NaN.
@@ -99,7 +109,7 @@ def _obstacle(world: ET.Element, name: str, obstacle: Obstacle) -> None:
     # SDF poses are of the shape's centre, so half the height lifts it onto the ground.
     pose = (obstacle.x, obstacle.y, obstacle.height / 2.0, 0.0, 0.0, obstacle.yaw)
     link = _static_model(world, name, pose)
-    for geometry in _shapes(link, OBSTACLE_COLOUR):
+    for geometry in _shapes(link, colour):
         element = ET.SubElement(geometry, shape)
         for tag, values in sizes.items():
             _text(element, tag, _numbers(values))

@@ -116,15 +116,22 @@ def rasterised(boxes: tuple[Box, ...], resolution: float, margin: float) -> Occu
     low = np.floor((corners.min(axis=0) - margin) / resolution) * resolution
     high = corners.max(axis=0) + margin
     width, height = (math.ceil(extent) for extent in (high - low) / resolution)
-    data = np.full((height, width), FREE, dtype=np.int8)
-    ys, xs = np.mgrid[0:height, 0:width]
-    centres = np.column_stack([xs.ravel(), ys.ravel()]) * resolution + low + resolution / 2.0
+    empty = np.full((height, width), FREE, dtype=np.int8)
+    return drawn(OccupancyGrid(resolution, (float(low[0]), float(low[1])), empty), boxes)
+
+
+def drawn(grid: OccupancyGrid, boxes: tuple[Box, ...]) -> OccupancyGrid:
+    """The grid with every cell a box covers any part of occupied."""
+    data = grid.data.copy()
+    ys, xs = np.mgrid[0 : grid.height, 0 : grid.width]
+    cells = np.column_stack([xs.ravel(), ys.ravel()])
+    centres = (cells + 0.5) * grid.resolution + grid.origin
     for box in boxes:
         # A cell overlaps the box when its centre lies within the box grown by half a cell's
         # diagonal along each of the box's own axes (exact for an axis-aligned box).
-        grown = box.grown(resolution / 2.0 * (abs(math.cos(box.yaw)) + abs(math.sin(box.yaw))))
-        data.ravel()[box_holds(grown, centres)] = OCCUPIED
-    return OccupancyGrid(resolution, (float(low[0]), float(low[1])), data)
+        turn = abs(math.cos(box.yaw)) + abs(math.sin(box.yaw))
+        data.ravel()[box_holds(box.grown(grid.resolution / 2.0 * turn), centres)] = OCCUPIED
+    return OccupancyGrid(grid.resolution, grid.origin, data)
 
 
 def _runs(occupied: npt.NDArray[np.bool_]) -> list[tuple[int, int]]:

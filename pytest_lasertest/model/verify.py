@@ -22,7 +22,7 @@ drops) at some scan as the robot passes, where the baseline reads it in range.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
@@ -37,6 +37,7 @@ from pytest_lasertest.model.obstacles import (
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import NominalPath, place, scan_times, swept_polygons
 from pytest_lasertest.model.sensor import LaserProfile
+from pytest_lasertest.model.walls import NO_WALLS, Walls
 
 Direction = Literal["candidate-misses", "baseline-misses"]
 DIRECTIONS: tuple[Direction, ...] = ("candidate-misses", "baseline-misses")
@@ -66,6 +67,8 @@ class Scene:
     candidate: LaserProfile
     robot: Robot
     path: NominalPath
+    # The world's walls: they hide what stands behind them, and no obstacle may stand in one.
+    walls: Walls = field(default_factory=Walls)
 
     def detector(self, direction: Direction) -> LaserProfile:
         """The scanner that must see the obstacle."""
@@ -126,12 +129,13 @@ class Verification:
     # m, placed without a direction: how deep the candidate reads it nearer than its range_min
     # where the baseline reads it in range, along the path; -inf for a direction
     too_near: float = -math.inf
+    walls: float = math.inf  # m, how far it stands from the nearest wall; inf without walls
 
     @property
     def margin(self) -> float:
-        """The smallest of the four margins (m); obstructing by being read too near counts."""
+        """The smallest of the margins (m); obstructing by being read too near counts."""
         obstructs = max(self.obstruction, self.too_near)
-        return min(self.detection, self.concealment, self.clearance, obstructs)
+        return min(self.detection, self.concealment, self.clearance, obstructs, self.walls)
 
     def holds(self, required: float = REQUIRED_MARGIN) -> bool:
         """Whether every margin reaches `required`."""
@@ -144,16 +148,19 @@ def verify(scene: Scene, placement: Placement, last: float | None = None) -> Ver
     obstacle, direction = placement.obstacle, placement.direction
     anchor_pose = scene.path.poses_at(np.array([placement.anchor]))
     detection = min(
-        float(np.max(hit_margins(getattr(scene, reader), anchor_pose, obstacle)))
+        float(np.max(hit_margins(getattr(scene, reader), anchor_pose, obstacle, scene.walls)))
         for reader in placement.readers
     )
     clearance, obstruction = _in_the_way(scene, obstacle, placement.anchor)
+    walls = scene.walls.clearance(obstacle)
     if direction is None:
         too_near, _ = read_too_near(scene, obstacle)
-        return Verification(detection, math.inf, clearance, obstruction, (), 0.0, False, too_near)
+        return Verification(
+            detection, math.inf, clearance, obstruction, (), 0.0, False, too_near, walls
+        )
     misser = scene.misser(direction)
     times = scan_times(misser.update_rate, max(placement.until, placement.anchor))
-    concealments = miss_margins(misser, scene.path.poses_at(times), obstacle)
+    concealments = miss_margins(misser, scene.path.poses_at(times), obstacle, scene.walls)
     last = last_chance(scene, obstacle) if last is None else last
     return Verification(
         detection=detection,
@@ -163,6 +170,7 @@ def verify(scene: Scene, placement: Placement, last: float | None = None) -> Ver
         seen_by_misser_at=tuple(float(t) for t in times[concealments < REQUIRED_MARGIN]),
         lead=scene.path.travelled(placement.until) - scene.path.travelled(placement.anchor),
         late=len(scan_times(misser.update_rate, last)) <= len(times),
+        walls=walls,
     )
 
 
@@ -195,7 +203,7 @@ def read_too_near(scene: Scene, obstacle: Obstacle) -> tuple[float, float]:
     poses = scene.path.poses_at(times)
     depths = np.minimum(
         too_near_margins(candidate, poses, obstacle),
-        np.max(hit_margins(baseline, poses, obstacle), axis=1),
+        np.max(hit_margins(baseline, poses, obstacle, scene.walls), axis=1),
     )
     deepest = int(np.argmax(depths))
     return float(depths[deepest]), float(times[deepest])
@@ -239,31 +247,47 @@ def last_chance(scene: Scene, obstacle: Obstacle, tolerance: float = 1e-4) -> fl
     return low
 
 
-def hit_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:
+def hit_margins(
+    profile: LaserProfile, poses: FloatArray, obstacle: Obstacle, walls: Walls = NO_WALLS
+) -> FloatArray:
     """How surely each beam reads the obstacle in range, shape (T, N), m; negative: it does not.
 
-    A beam reads it when it passes inside the obstacle between range.min and range.max and
+    A beam reads it when it passes inside the obstacle between range.min and range.max, before
+    any wall (REQUIRED_MARGIN short of it, as a cast may meet a face that much early), and
     nothing of the obstacle is nearer than range.min (REP 117 would report -inf); the obstacle
     must also stand above the scan plane.
     """
     origins, directions = profile.rays(poses)
     shape = origins.shape[:2]
-    inside = -_clearances(origins, directions, profile.range_min, profile.range_max, obstacle)
-    margins = inside.reshape(shape)
+    flat_origins, flat_directions = origins.reshape(-1, 2), directions.reshape(-1, 2)
+    ends = np.full(len(flat_origins), profile.range_max)
+    if walls:
+        ends = np.minimum(ends, walls.reach(flat_origins, flat_directions) - REQUIRED_MARGIN)
+    starts = np.full(len(flat_origins), profile.range_min)
+    inside = -segment_clearances(
+        flat_origins, flat_directions, starts, np.maximum(ends, starts), obstacle
+    )
+    # A wall nearer than range_min: the beam reads -inf, whatever stands behind it.
+    margins = np.where(ends < starts, -np.inf, inside).reshape(shape)
     if profile.range_min > 0:
-        before = _clearances(origins, directions, 0.0, profile.range_min, obstacle)
+        before = segment_clearances(
+            flat_origins, flat_directions, np.zeros(len(starts)), starts, obstacle
+        )
         margins = np.minimum(margins, before.reshape(shape))
     above_plane: FloatArray = np.minimum(margins, obstacle.height - profile.scan_height)
     return above_plane
 
 
-def miss_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:
+def miss_margins(
+    profile: LaserProfile, poses: FloatArray, obstacle: Obstacle, walls: Walls = NO_WALLS
+) -> FloatArray:
     """How surely each scan misses the obstacle, shape (T,), m; negative: some beam reads it.
 
     Only the part of a beam from range_min to range_max can give a reading in range (nearer, REP
-    117 reports -inf, which a costmap drops), so a beam misses by that part's clearance. Only
-    beams that come near the obstacle are cast; a scan whose beams all pass EXACT_WITHIN clear
-    gets EXACT_WITHIN, a lower bound.
+    117 reports -inf, which a costmap drops), and none past a wall (taken REQUIRED_MARGIN beyond
+    it, as a cast may meet a face that much late), so a beam misses by that part's clearance.
+    Only beams that come near the obstacle are cast; a scan whose beams all pass EXACT_WITHIN
+    clear gets EXACT_WITHIN, a lower bound.
     """
     scans, beams = profile.beams_near(
         poses, (obstacle.x, obstacle.y), obstacle.within(EXACT_WITHIN)
@@ -271,23 +295,28 @@ def miss_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -
     origins = profile.origins(poses)[scans]
     directions = profile.beam_directions(poses, scans, beams)
     count = len(scans)
-    clear = segment_clearances(
-        origins,
-        directions,
-        np.full(count, profile.range_min),
-        np.full(count, profile.range_max),
-        obstacle,
-    )
+    ends = np.full(count, profile.range_max)
+    if walls:
+        ends = np.minimum(ends, walls.reach(origins, directions) + REQUIRED_MARGIN)
+    starts = np.full(count, profile.range_min)
+    clear = segment_clearances(origins, directions, starts, np.maximum(ends, starts), obstacle)
     nearest = np.full(len(poses), EXACT_WITHIN)
     np.minimum.at(nearest, scans, clear)
     lower: FloatArray = np.maximum(nearest, profile.scan_height - obstacle.height)
     return lower
 
 
-def readings(profile: LaserProfile, poses: FloatArray, obstacle: Obstacle) -> FloatArray:
-    """LaserScan ranges of the scans at `poses`, shape (T, N), m: REP 117 -inf / +inf outside."""
+def readings(
+    profile: LaserProfile, poses: FloatArray, obstacle: Obstacle, walls: Walls = NO_WALLS
+) -> FloatArray:
+    """LaserScan ranges of the scans at `poses` that read the obstacle, shape (T, N), m: REP
+    117 -inf / +inf outside, and +inf where a wall stands before it."""
     origins, directions = profile.rays(poses)
-    distances = ray_distances(origins.reshape(-1, 2), directions.reshape(-1, 2), obstacle)
+    flat_origins, flat_directions = origins.reshape(-1, 2), directions.reshape(-1, 2)
+    distances = ray_distances(flat_origins, flat_directions, obstacle)
+    if walls:
+        hidden = walls.reach(flat_origins, flat_directions) < distances
+        distances = np.where(hidden, np.inf, distances)
     ranges = distances.reshape(origins.shape[:2])
     if obstacle.height <= profile.scan_height:
         return np.full_like(ranges, np.inf)
@@ -314,13 +343,3 @@ def too_near_margins(profile: LaserProfile, poses: FloatArray, obstacle: Obstacl
     np.maximum.at(deepest, scans, -clear)
     above: FloatArray = np.minimum(deepest, obstacle.height - profile.scan_height)
     return above
-
-
-def _clearances(
-    origins: FloatArray, directions: FloatArray, start: float, end: float, obstacle: Obstacle
-) -> FloatArray:
-    flat_origins, flat_directions = origins.reshape(-1, 2), directions.reshape(-1, 2)
-    count = len(flat_origins)
-    return segment_clearances(
-        flat_origins, flat_directions, np.full(count, start), np.full(count, end), obstacle
-    )

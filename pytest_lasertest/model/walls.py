@@ -22,7 +22,7 @@ from pytest_lasertest.model.obstacles import (
     polygon_clearance,
     ray_distances,
 )
-from pytest_lasertest.model.occupancy import OccupancyGrid, rasterised
+from pytest_lasertest.model.occupancy import OccupancyGrid, drawn, rasterised
 
 # Taller than any scanner is mounted: every scan plane meets a wall.
 WALL_HEIGHT = 2.0  # m
@@ -51,9 +51,10 @@ class Walls:
         return cls(boxes, rasterised(boxes, MAP_RESOLUTION, MAP_MARGIN))
 
     @classmethod
-    def mapped(cls, grid: OccupancyGrid) -> Walls:
-        """The walls of a map: its occupied cells, WALL_HEIGHT high."""
-        return cls(grid.wall_boxes(WALL_HEIGHT), grid)
+    def mapped(cls, grid: OccupancyGrid, listed: tuple[Box, ...] = ()) -> Walls:
+        """The walls of a map, its occupied cells WALL_HEIGHT high, and any walls listed
+        besides, drawn into the map a controller is given."""
+        return cls(grid.wall_boxes(WALL_HEIGHT) + listed, drawn(grid, listed))
 
     def reach(self, origins: FloatArray, directions: FloatArray) -> FloatArray:
         """How far each ray, origins and unit directions shape (R, 2), runs before it meets a
@@ -66,10 +67,31 @@ class Walls:
     def clearance(self, obstacle: Obstacle) -> float:
         """How far the obstacle stands from the nearest wall (m; negative: that deep inside
         one; inf without walls), in the obstacle's own clearance metric."""
-        near = [box for box in self.boxes if _may_touch(box, obstacle)]
+        near = self.near(obstacle.x, obstacle.y, obstacle.bounding_radius + 1.0)
         return min(
             (polygon_clearance(np.array(box.corners()), obstacle) for box in near),
             default=math.inf,
+        )
+
+    def distances(self, points: FloatArray) -> FloatArray:
+        """How far each point, shape (P, 2) m, lies from the nearest wall, (P,) m: 0 inside
+        one, inf without walls."""
+        nearest = np.full(len(points), np.inf)
+        for box in self.boxes:
+            cos, sin = math.cos(box.yaw), math.sin(box.yaw)
+            offsets = points - (box.x, box.y)
+            along = np.abs(offsets @ (cos, sin)) - box.length / 2.0
+            across = np.abs(offsets @ (-sin, cos)) - box.width / 2.0
+            gap = np.hypot(np.maximum(along, 0.0), np.maximum(across, 0.0))
+            nearest = np.minimum(nearest, gap)
+        return nearest
+
+    def near(self, x: float, y: float, within: float) -> tuple[Box, ...]:
+        """The walls whose footprint may come within `within` m of (x, y) m."""
+        return tuple(
+            box
+            for box in self.boxes
+            if math.hypot(box.x - x, box.y - y) - box.bounding_radius < within
         )
 
     def holding(self, points: FloatArray) -> list[Box]:
@@ -77,8 +99,5 @@ class Walls:
         return [box for box in self.boxes if bool(np.any(box_holds(box, points)))]
 
 
-def _may_touch(box: Box, obstacle: Obstacle) -> bool:
-    """Whether their bounding circles come within a metre (the clearances that matter are
-    millimetres)."""
-    apart = math.hypot(box.x - obstacle.x, box.y - obstacle.y)
-    return apart - box.bounding_radius - obstacle.bounding_radius < 1.0
+# An empty world: the default wherever walls may be given.
+NO_WALLS = Walls()

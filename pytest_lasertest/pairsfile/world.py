@@ -1,4 +1,10 @@
-"""The `world:` of a pairs file: where the robot starts, where it must go, and how long it has."""
+"""The `world:` of a pairs file: where the robot starts, where it must go, how long it has, and
+the walls it drives between (a `map:`, listed `walls:`, or both).
+
+With walls, the robot's footprint must stand clear of them at the start and along every leg of
+the route; a world that gives only a goal has its route planned through the walls
+(`nav/waypoints.py`).
+"""
 
 from __future__ import annotations
 
@@ -6,17 +12,24 @@ import itertools
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from pytest_lasertest.inputs.node import Bounds, SpecNode
-from pytest_lasertest.model.geometry import FULL_TURN, Point2D, Pose2D
+from pytest_lasertest.model.geometry import FULL_TURN, FloatArray, Point2D, Pose2D
+from pytest_lasertest.model.obstacles import Box, polygon_clearance
 from pytest_lasertest.model.robot import Robot
-from pytest_lasertest.model.route import nominal_path
+from pytest_lasertest.model.route import Leg, NominalPath, nominal_path, place, swept_polygons
+from pytest_lasertest.model.walls import NO_WALLS, Walls
 from pytest_lasertest.nav.move_base.settings import (
     NavigationSettings,
     costmap_cells,
     global_costmap_size,
 )
+from pytest_lasertest.nav.waypoints import CLEARANCE, plan_route
+from pytest_lasertest.pairsfile.maps import read_map
+from pytest_lasertest.pairsfile.walls import read_walls
 
-WORLD_KEYS = ("start", "goal", "route", "time_limit")
+WORLD_KEYS = ("start", "goal", "route", "time_limit", "map", "walls")
 # Closer than this, two waypoints are one: the robot cannot tell them apart.
 MIN_LEG = 1e-3  # m
 # Every run simulates the time limit in 20 ms physics steps, each with a scan and a command: an
@@ -54,11 +67,12 @@ GOAL_TOLERANCE = 0.2  # m
 
 @dataclass(frozen=True)
 class World:
-    """An empty world with a start pose and a route ending at the goal."""
+    """A start pose, a route ending at the goal, a time limit, and the walls."""
 
     start: Pose2D
     route: tuple[Point2D, ...]  # waypoints in order; the last is the goal
     time_limit: float  # s
+    walls: Walls = NO_WALLS
 
     @property
     def goal(self) -> Point2D:
@@ -83,13 +97,107 @@ def read_world(node: SpecNode, robot: Robot) -> World:
     if "time_limit" not in fields:
         raise node.missing("time_limit", "write the time the robot has to reach the goal, in s")
     start = _pose(fields["start"])
+    walls = _walls(fields)
     waypoints = [fields["goal"]] if "goal" in fields else _waypoints(fields["route"])
-    world = World(start, _route(start, waypoints), fields["time_limit"].number_in(TIME_LIMIT))
+    route = _route(start, waypoints)
     route_node = fields.get("route", fields.get("goal", node))
+    if walls:
+        _check_ends(start, route, walls, robot, fields)
+        if "goal" in fields:
+            route = _planned(start, route[-1], walls, robot, fields["goal"])
+    world = World(start, route, fields["time_limit"].number_in(TIME_LIMIT), walls)
+    _check_legs(world, robot, route_node)
     _check_pace(world, robot, route_node)
     _check_global_costmap(world, robot, route_node)
     _check_time_limit(world, robot, fields["time_limit"])
     return world
+
+
+def _walls(fields: dict[str, SpecNode]) -> Walls:
+    """The walls of the world's map and those it lists."""
+    listed = read_walls(fields["walls"]) if "walls" in fields else ()
+    if "map" in fields:
+        return Walls.mapped(read_map(fields["map"]), listed)
+    return Walls.listed(listed)
+
+
+def _check_ends(
+    start: Pose2D,
+    route: tuple[Point2D, ...],
+    walls: Walls,
+    robot: Robot,
+    fields: dict[str, SpecNode],
+) -> None:
+    """Refuse a start pose whose footprint stands in a wall, and a last waypoint inside one."""
+    footprint = place(robot.footprint_array(), np.array([start.x, start.y, start.yaw]))
+    inside = [wall for wall in walls.near(start.x, start.y, 10.0) if _overlap(footprint, wall)]
+    if inside:
+        raise fields["start"].error(
+            f"the robot's footprint at the start ({start.x:g}, {start.y:g}) stands in the wall "
+            f"{_wall(inside[0])}",
+            "move the start into free space, clear of every wall",
+        )
+    goal = route[-1]
+    if walls.holding(np.array([[goal.x, goal.y]])):
+        node = fields.get("goal", fields.get("route"))
+        raise (node or fields["start"]).error(
+            f"the goal ({goal.x:g}, {goal.y:g}) lies inside a wall",
+            "move the goal into free space, clear of every wall",
+        )
+
+
+def _planned(
+    start: Pose2D, goal: Point2D, walls: Walls, robot: Robot, node: SpecNode
+) -> tuple[Point2D, ...]:
+    """The route through the walls to the goal, planned; an error when there is none."""
+    radius = float(np.max(np.hypot(*robot.footprint_array().T)))  # m
+    route = plan_route(Point2D(start.x, start.y), goal, walls, radius)
+    if not route:
+        raise node.error(
+            f"no route from the start to the goal ({goal.x:g}, {goal.y:g}) keeps the robot "
+            f"(it turns within {radius:.2f} m) {CLEARANCE:g} m clear of every wall: the walls "
+            "close the way, or leave no gap wide enough",
+            "check the map or the walls for a gap that should be open, or move the goal",
+        )
+    return route
+
+
+def _check_legs(world: World, robot: Robot, node: SpecNode) -> None:
+    """Refuse a route whose swept footprint runs into a wall, naming the first leg that does."""
+    if not world.walls:
+        return
+    path = nominal_path(world.start, world.route, robot.nominal_speed, robot.nominal_turn_rate)
+    footprint = robot.footprint_array()
+    for index, segment in enumerate(_segments_by_waypoint(path)):
+        pieces = swept_polygons(path, footprint, segment[0], segment[1])
+        hit = [wall for piece in pieces for wall in world.walls.boxes if _overlap(piece, wall)]
+        if hit:
+            point = world.route[index]
+            raise node.error(
+                f"the robot's footprint runs into the wall {_wall(hit[0])} on its way to "
+                f"waypoint {index + 1} ({point.x:g}, {point.y:g})",
+                "add waypoints around the wall, or give only the goal and let the gate plan "
+                "the route through the walls",
+            )
+
+
+def _segments_by_waypoint(path: NominalPath) -> list[tuple[float, float]]:
+    """For each waypoint, when the robot begins turning toward it and when it arrives (s)."""
+    spans, begins = [], 0.0
+    for segment in path.segments:
+        if isinstance(segment, Leg):
+            spans.append((begins, path.end_of(segment)))
+            begins = path.end_of(segment)
+    return spans
+
+
+def _overlap(polygon: FloatArray, wall: Box) -> bool:
+    return polygon_clearance(polygon, wall) < 0.0
+
+
+def _wall(box: Box) -> str:
+    """A wall as a reader finds it: its centre and sides."""
+    return f"at ({box.x:g}, {box.y:g}), {box.length:g} x {box.width:g} m"
 
 
 def _waypoints(node: SpecNode) -> list[SpecNode]:

@@ -95,7 +95,14 @@ def scenario(
     holding `obstacles`, with scan noise from `seed`."""
     world = spec.world
     return Scenario(
-        spec.robot, profile, obstacles, world.start, world.route, world.time_limit, seed
+        spec.robot,
+        profile,
+        obstacles,
+        world.start,
+        world.route,
+        world.time_limit,
+        seed,
+        walls=world.walls,
     )
 
 

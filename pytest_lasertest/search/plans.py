@@ -56,7 +56,8 @@ def avoid_for(spec: PairsFile, scene: Scene) -> tuple[Witness, ...]:
 def pair_scene(spec: PairsFile, pair: Pair, control: Run | None = None) -> Scene:
     """Both scanners of the pair on the pairs file's robot, along the path the solver plans on."""
     path = route_path(spec) if control is None else driven_path(spec, control)
-    return Scene(pair.baseline.profile, pair.candidate.profile, spec.robot, path)
+    baseline, candidate = pair.baseline.profile, pair.candidate.profile
+    return Scene(baseline, candidate, spec.robot, path, spec.world.walls)
 
 
 def route_path(spec: PairsFile) -> NominalPath:

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.obstacles import Box
 from pytest_lasertest.model.plan import Status, Witness
 from pytest_lasertest.model.route import scan_times, swept_polygons
 from pytest_lasertest.model.verify import ROLES, Direction, Placement, Scene, verify
@@ -78,7 +79,7 @@ class Question:
         return {
             **self._robot_blocks,
             "detector": reading
-            or detected(self.shape, detector, pose, within or self.region, beams),
+            or detected(self.shape, detector, pose, within or self.region, beams, self.scene.walls),
             **constraint_blocks(self.settings, self.shape),
         }
 
@@ -96,7 +97,18 @@ class Question:
             # arrive); without it a model at the goal failed the ray cast.
             "goal": shape.clear_of_polygon(scene.arrival()),
             "path": any_of([shape.inside_polygon(piece) for piece in after]),
+            "walls": all_of(
+                [shape.clear_of_polygon(np.array(wall.corners())) for wall in self._walls]
+            ),
         }
+
+    @property
+    def _walls(self) -> tuple[Box, ...]:
+        """The walls an obstacle in the region may touch."""
+        region = self.region
+        centre = (np.array(region.low) + region.high) / 2.0
+        reach = float(np.hypot(*(np.array(region.high) - region.low))) / 2.0
+        return self.scene.walls.near(float(centre[0]), float(centre[1]), reach)
 
     def pose(self) -> FloatArray:
         """The robot at the anchor, [x, y, yaw]."""
@@ -275,6 +287,7 @@ def _why(
         "robot": f"room for the robot to stop ({scene.robot.braking_distance:.2f} m)",
         "path": "being in the robot's way",
         "goal": "leaving the goal free",
+        "walls": "standing clear of the walls",
         "detector": f"the {detector_side}'s reading",
     }
     named = [words[label] if label in words else _constraint(settings, label) for label in others]

@@ -19,6 +19,8 @@ import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FULL_TURN, FloatArray
 from pytest_lasertest.model.sensor import LaserProfile
+from pytest_lasertest.model.verify import REQUIRED_MARGIN
+from pytest_lasertest.model.walls import NO_WALLS, Walls
 from pytest_lasertest.solver.encoding import ObstacleShape, all_of, any_of, linear, number
 
 # Beyond range is "outside a circle", which is not linear; tangent half-planes stand in for it,
@@ -49,8 +51,10 @@ def detected(
     pose: FloatArray,
     region: Region,
     beams: IndexArray | None = None,
+    walls: Walls = NO_WALLS,
 ) -> str:
-    """Some beam of the scan at robot pose [x, y, yaw] reads the obstacle with margin M.
+    """Some beam of the scan at robot pose [x, y, yaw] reads the obstacle with margin M, before
+    it meets a wall (REQUIRED_MARGIN short of it, as the verifier has it).
 
     `beams` (indices) limits the disjunction to those beams; by default every beam that can
     reach the region takes part.
@@ -58,10 +62,15 @@ def detected(
     if beams is None:
         beams = reaching_beams(profile, pose, region)
     origins, directions = profile.rays(pose[np.newaxis, :])
-    origins, directions = origins[0], directions[0]
+    origins, directions = origins[0][beams], directions[0][beams]
+    ends = np.full(len(beams), profile.range_max)
+    if walls:
+        ends = np.minimum(ends, walls.reach(origins, directions) - REQUIRED_MARGIN)
     options = []
-    for origin, direction in zip(origins[beams], directions[beams], strict=True):
-        parts = [shape.crossed_by(origin, direction, profile.range_min, profile.range_max)]
+    for origin, direction, end in zip(origins, directions, ends.tolist(), strict=True):
+        if end <= profile.range_min:
+            continue  # a wall nearer than range_min: this beam reads nothing behind it
+        parts = [shape.crossed_by(origin, direction, profile.range_min, end)]
         if profile.range_min > 0:
             parts.append(shape.at_least(direction, float(origin @ direction) + profile.range_min))
         options.append(all_of(parts))

@@ -121,6 +121,12 @@ class Query:
             "detector": all_of([shape.holds(point), *self._reading()]),
             "robot": all_of([shape.beyond(_separating(piece, point, shape)) for piece in before]),
             "goal": shape.beyond(_separating(scene.arrival(), point, shape)),
+            "walls": all_of(
+                [
+                    shape.beyond(_separating(np.array(wall.corners()), point, shape))
+                    for wall in scene.walls.near(*self.seed.point, needed_reach(self.settings))
+                ]
+            ),
         }
 
     def user_blocks(self) -> dict[str, str]:
@@ -209,6 +215,12 @@ def bounds(settings: SearchSettings) -> str:
             f"(>= (- (* 0.5 S) M) {number(REQUIRED_MARGIN)})",
         ]
     )
+
+
+def needed_reach(settings: SearchSettings) -> float:
+    """How far from its seed any part of an obstacle the settings allow can reach (m): the
+    obstacle holds the seed."""
+    return math.sqrt(2.0) * settings.max_size + MAX_MARGIN
 
 
 def needed_room(shape: ObstacleShape, settings: SearchSettings) -> float:

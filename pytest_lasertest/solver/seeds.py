@@ -66,13 +66,15 @@ def candidates(scene: Scene, direction: Direction, anchor: float, needed: float)
     origins, directions = detector.rays(scene.path.poses_at(np.array([anchor])))
     origin, footprint = origins[0, 0], scene.robot.footprint_array()
     after = swept_polygons(scene.path, footprint, scene.standstill(anchor), scene.path.duration)
-    ends = (detector.range_min, detector.range_max - DEPTH)
-    points = _along(origin, directions[0], *ends, np.vstack(after))
+    # A beam reads nothing past the first wall it meets.
+    far = np.minimum(detector.range_max, scene.walls.reach(origins[0], directions[0])) - DEPTH
+    points = _along(origin, directions[0], detector.range_min, far, np.vstack(after))
     points = points[np.max([-_outside_by(piece, points) for piece in after], axis=0) >= DEPTH]
     room = np.minimum(
         np.hypot(*(points - origin).T) - detector.range_min,
         _room_up_to_anchor(scene, direction, anchor, points),
     )
+    room = np.minimum(room, scene.walls.distances(points))
     braking = scene.robot.braking_distance / scene.path.speed
     last = np.minimum(contact_times(scene.path, footprint, points) - braking, scene.path.duration)
     keep = (room >= needed) & (last >= anchor)
@@ -145,9 +147,10 @@ def _order(seed: Seed) -> tuple[float, float, float, float]:
 
 
 def _along(
-    origin: FloatArray, directions: FloatArray, near: float, far: float, corners: FloatArray
+    origin: FloatArray, directions: FloatArray, near: float, far: FloatArray, corners: FloatArray
 ) -> FloatArray:
-    """Points every SEED_STEP along each beam (N, 2) where it crosses the box around `corners`."""
+    """Points every SEED_STEP along each beam (N, 2), from `near` to its `far` (N,) m, where it
+    crosses the box around `corners`."""
     low, high = corners.min(axis=0), corners.max(axis=0)
     with np.errstate(divide="ignore", invalid="ignore"):
         ends = np.stack([(low - origin) / directions, (high - origin) / directions])

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import struct
@@ -9,13 +10,17 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from matplotlib.collections import PolyCollection
 from matplotlib.colors import to_rgb
+from matplotlib.figure import Figure
 from matplotlib.image import imread
 
 from pytest_lasertest.artifacts.picture import (
     BASELINE_COLOUR,
     CANDIDATE_COLOUR,
     OBSTACLE_COLOUR,
+    WALL_COLOUR,
+    WALL_REACH,
     BeamFan,
     FailureFigure,
     build_figure,
@@ -28,6 +33,13 @@ PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 HUSKY = np.array([[0.495, 0.335], [-0.495, 0.335], [-0.495, -0.335], [0.495, -0.335]])  # m
 BOX = Box(x=6.2, y=0.0, yaw=0.5, length=1.0, width=0.8, height=0.5)
 CYLINDER = Cylinder(x=6.2, y=0.0, radius=0.5, height=0.5)
+# A corridor wall above the baseline's arc, one below the candidate, and a turned one past the
+# goal: all within WALL_REACH of what the picture shows.
+WALLS = (
+    Box(x=6.0, y=3.0, yaw=0.0, length=16.0, width=0.2, height=2.0),
+    Box(x=6.0, y=-1.5, yaw=0.0, length=16.0, width=0.2, height=2.0),
+    Box(x=13.0, y=0.5, yaw=0.4, length=1.0, width=0.2, height=2.0),
+)
 
 
 def fan(label: str, pose: tuple[float, float, float], obstacle: Obstacle) -> BeamFan:
@@ -176,6 +188,96 @@ def test_a_written_artifact_gets_the_mode_of_any_new_file(tmp_path: Path) -> Non
 
 def test_every_label_title_and_legend_lies_inside_the_picture() -> None:
     picture = build_figure(failure_figure(CYLINDER))
+    picture.canvas.draw()
+    drawn = picture.get_tightbbox()  # inches
+    assert drawn is not None
+    assert drawn.x0 >= 0.0
+    assert drawn.y0 >= 0.0
+    assert drawn.x1 <= 10.0
+    assert drawn.y1 <= 7.0
+
+
+# Walls
+
+
+def walls_drawn(picture: Figure) -> PolyCollection:
+    """The one collection the picture fills with the walls."""
+    (walls,) = [each for each in picture.axes[0].collections if each.get_label() == "walls"]
+    assert isinstance(walls, PolyCollection)
+    return walls
+
+
+def outlines(walls: PolyCollection) -> list[FloatArray]:
+    """The corners of each polygon drawn, shape (4, 2) m: a path repeats its first to close."""
+    return [np.asarray(path.vertices, dtype=np.float64)[:4] for path in walls.get_paths()]
+
+
+def test_the_walls_are_filled_dark_grey_where_they_stand() -> None:
+    walls = walls_drawn(build_figure(dataclasses.replace(failure_figure(BOX), walls=WALLS)))
+    drawn = outlines(walls)
+    assert len(drawn) == len(WALLS)
+    for outline, wall in zip(drawn, WALLS, strict=True):
+        np.testing.assert_allclose(outline, np.array(wall.corners()))
+    colours = np.asarray(walls.get_facecolor(), dtype=np.float64)[:, :3]
+    np.testing.assert_allclose(colours, np.array([to_rgb(WALL_COLOUR)]))
+    assert to_rgb(WALL_COLOUR) != to_rgb(OBSTACLE_COLOUR)
+
+
+def test_the_walls_lie_beneath_the_beams_the_paths_the_robots_and_the_obstacle() -> None:
+    picture = build_figure(dataclasses.replace(failure_figure(BOX), walls=WALLS))
+    axes = picture.axes[0]
+    walls = walls_drawn(picture)
+    above = [*axes.lines, *axes.patches, *(c for c in axes.collections if c is not walls)]
+    assert above
+    assert all(walls.get_zorder() < artist.get_zorder() for artist in above)
+    # Over the grid, which the axes draw below everything else.
+    assert walls.get_zorder() > axes.xaxis.get_zorder()
+
+
+def test_the_legend_names_the_walls_once_however_many_there_are() -> None:
+    many = WALLS * 50
+    picture = build_figure(dataclasses.replace(failure_figure(BOX), walls=many))
+    labels = [text.get_text() for text in picture.legends[0].get_texts()]
+    assert labels.count("walls") == 1
+    assert len(walls_drawn(picture).get_paths()) == len(many)
+
+
+def test_a_picture_without_walls_draws_and_names_none() -> None:
+    picture = build_figure(failure_figure(BOX))
+    labels = [text.get_text() for text in picture.legends[0].get_texts()]
+    assert "walls" not in labels
+    assert not [each for each in picture.axes[0].collections if each.get_label() == "walls"]
+
+
+def test_a_wall_just_past_the_padding_widens_the_view_to_hold_it() -> None:
+    # Past the goal (x = 12 m) and its 1 m of padding, within WALL_REACH.
+    wall = Box(x=13.6, y=0.5, yaw=0.0, length=0.4, width=3.0, height=2.0)
+    picture = build_figure(dataclasses.replace(failure_figure(BOX), walls=(wall,)))
+    picture.canvas.draw()
+    left, right = picture.axes[0].get_xlim()
+    assert left == pytest.approx(-1.0)
+    assert right == pytest.approx(13.8)
+
+
+def test_a_building_s_walls_widen_the_view_no_further_than_the_wall_reach() -> None:
+    building = (
+        # A wall 100 m long beside the route, and one 50 m away.
+        Box(x=6.0, y=3.0, yaw=0.0, length=100.0, width=0.2, height=2.0),
+        Box(x=62.0, y=0.0, yaw=0.3, length=0.2, width=80.0, height=2.0),
+    )
+    picture = build_figure(dataclasses.replace(failure_figure(BOX), walls=building))
+    picture.canvas.draw()
+    axes = picture.axes[0]
+    # The paths and the goal run from x = 0 m to 12 m: the long wall counts only that far and
+    # WALL_REACH beyond; the axes cut off the rest of it, and all of the far one.
+    assert axes.get_xlim() == pytest.approx((-WALL_REACH, 12.0 + WALL_REACH))
+    bottom, top = axes.get_ylim()
+    assert bottom < -1.0 < 3.1 < top < 20.0
+    assert walls_drawn(picture).get_clip_on()
+
+
+def test_a_picture_among_walls_keeps_every_label_inside_it() -> None:
+    picture = build_figure(dataclasses.replace(failure_figure(CYLINDER), walls=WALLS))
     picture.canvas.draw()
     drawn = picture.get_tightbbox()  # inches
     assert drawn is not None

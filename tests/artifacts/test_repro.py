@@ -150,6 +150,85 @@ def test_an_absolute_robot_path_is_kept_as_written(tmp_path: Path) -> None:
     assert yaml.safe_load(destination.read_text())["robot"] == str(robot_file)
 
 
+# A corridor of two walls, one listed as a box, one as a segment, around a route along x.
+WALLED_PAIRS = VALID_PAIRS.replace(
+    "  goal: {x: 10.0, y: 0.0}\n",
+    "  route: [{x: 10.0, y: 0.0}]\n"
+    "  walls:\n"
+    "    - {x: 5.0, y: 2.0, length: 14.0, width: 0.2}\n"
+    "    - {from: {x: -2.0, y: -2.0}, to: {x: 12.0, y: -2.0}, thickness: 0.2}\n",
+)
+
+
+def with_map(path: Path, written: str) -> None:
+    """The pairs file at `path` given `map: written` in its world after it was loaded: the
+    repro copies the world as written, and only rewrites the map's path, never reads it."""
+    text = path.read_text()
+    path.write_text(text.replace("world:\n", f"world:\n  map: {written}\n", 1))
+
+
+def test_a_world_s_listed_walls_replay_from_a_repro_in_another_directory(tmp_path: Path) -> None:
+    original = load_pairs_file(write(tmp_path / "project", WALLED_PAIRS))
+    assert len(original.world.walls.boxes) == 2
+    pinned = pinned_for(pair_named(original, "same"))
+    destination = tmp_path / "artifacts" / "gate" / "same.lasertest.yaml"
+    assert_replays(original, "same", pinned, replay(original, "same", pinned, destination))
+    written = yaml.safe_load(destination.read_text())["world"]
+    assert written["walls"][1] == {
+        "from": {"x": -2.0, "y": -2.0},
+        "to": {"x": 12.0, "y": -2.0},
+        "thickness": 0.2,
+    }
+
+
+@pytest.mark.parametrize("written", ["maps/doorway.yaml", "./maps/doorway.yaml"])
+@pytest.mark.parametrize(
+    "destination",
+    [
+        "artifacts/gate/same.lasertest.yaml",
+        "project/regressions/same.lasertest.yaml",
+        "project/same-repro.lasertest.yaml",
+    ],
+)
+def test_a_relative_map_path_is_rewritten_so_the_repro_finds_the_same_map_file(
+    tmp_path: Path, written: str, destination: str
+) -> None:
+    project = tmp_path / "project"
+    map_file = write(project / "maps", "image: doorway.pgm\n", "doorway.yaml")
+    path = write(project, VALID_PAIRS)
+    original = load_pairs_file(path)
+    with_map(path, written)
+    pair = pair_named(original, "same")
+    repro = tmp_path / destination
+    world = yaml.safe_load(repro_yaml(original, pair, pinned_for(pair), repro, ()))["world"]
+    assert not Path(world["map"]).is_absolute()
+    assert (repro.parent / world["map"]).resolve() == map_file.resolve()
+    # The rest of the world as written, in its order.
+    assert list(world) == ["map", "start", "goal", "time_limit"]
+    assert world["goal"] == {"x": 10.0, "y": 0.0}
+
+
+def test_a_map_path_beside_the_repro_is_written_as_the_user_wrote_it(tmp_path: Path) -> None:
+    path = write(tmp_path / "project", VALID_PAIRS)
+    original = load_pairs_file(path)
+    with_map(path, "maps/doorway.yaml")
+    pair = pair_named(original, "same")
+    destination = tmp_path / "project" / "same-repro.lasertest.yaml"
+    text = repro_yaml(original, pair, pinned_for(pair), destination, ())
+    assert yaml.safe_load(text)["world"]["map"] == "maps/doorway.yaml"
+
+
+def test_an_absolute_map_path_is_kept_as_written(tmp_path: Path) -> None:
+    map_file = write(tmp_path / "maps", "image: doorway.pgm\n", "doorway.yaml")
+    path = write(tmp_path / "project", VALID_PAIRS)
+    original = load_pairs_file(path)
+    with_map(path, str(map_file))
+    pair = pair_named(original, "same")
+    destination = tmp_path / "elsewhere" / "same.lasertest.yaml"
+    text = repro_yaml(original, pair, pinned_for(pair), destination, ())
+    assert yaml.safe_load(text)["world"]["map"] == str(map_file)
+
+
 def test_navigation_overrides_are_copied_so_the_repro_s_robot_navigates_the_same(
     tmp_path: Path,
 ) -> None:

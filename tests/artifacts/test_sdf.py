@@ -83,6 +83,10 @@ BOX = Box(
     x=1.0 / 3.0, y=-2.718281828459045, yaw=0.1234567890123, length=0.4, width=0.25, height=0.5
 )
 CYLINDER = Cylinder(x=4.0, y=1e-7, radius=0.0507, height=1.25)
+WALLS = (
+    Box(x=5.0, y=2.0, yaw=0.0, length=14.0, width=0.2, height=2.0),
+    Box(x=-1.0 / 3.0, y=-2.1, yaw=-0.7853981633974483, length=3.5, width=0.15, height=0.75),
+)
 
 
 def parse(text: str) -> ET.Element:
@@ -225,3 +229,59 @@ def test_a_world_that_cannot_be_made_writes_nothing(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="finite sizes"):
         write_world(tmp_path / "item.world", "replay", [Cylinder(0.0, 0.0, 0.0, 1.0)])
     assert list(tmp_path.iterdir()) == []
+
+
+# Walls
+
+
+def test_the_world_holds_one_static_box_per_wall_beside_the_obstacles() -> None:
+    world = parse(world_sdf("replay", [CYLINDER], WALLS))[0]
+    found = models(world)
+    assert list(found) == ["ground_plane", "obstacle_0", "wall_0", "wall_1"]
+    for name in ("wall_0", "wall_1"):
+        assert found[name].findtext("static") == "true"
+        assert [link.attrib["name"] for link in found[name].findall("link")] == ["link"]
+
+
+@pytest.mark.parametrize("index", range(len(WALLS)))
+def test_a_wall_stands_on_the_ground_with_its_size_and_pose_to_the_last_digit(index: int) -> None:
+    wall = WALLS[index]
+    model = models(parse(world_sdf("replay", [BOX], WALLS))[0])[f"wall_{index}"]
+    assert numbers(model.find("pose")) == [wall.x, wall.y, wall.height / 2.0, 0.0, 0.0, wall.yaw]
+    for kind in ("collision", "visual"):
+        size = numbers(model.find(f"link/{kind}/geometry/box/size"))
+        assert size == [wall.length, wall.width, wall.height]
+
+
+def test_walls_are_coloured_apart_from_the_obstacle() -> None:
+    found = models(parse(world_sdf("replay", [BOX], WALLS))[0])
+    wall, obstacle = (
+        numbers(found[name].find("link/visual/material/diffuse"))
+        for name in ("wall_0", "obstacle_0")
+    )
+    assert wall != obstacle
+
+
+def test_a_world_with_walls_uses_only_sdf_1_6_elements_where_they_are_allowed() -> None:
+    root = parse(world_sdf("replay", [BOX, CYLINDER], WALLS))
+    assert {element.tag for element in root.iter()} <= SDF_1_6_ELEMENTS
+    for parent in root.iter():
+        for child in parent:
+            assert child.tag in SDF_1_6_CHILDREN[parent.tag], f"<{child.tag}> in <{parent.tag}>"
+
+
+def test_a_world_without_walls_is_written_as_before() -> None:
+    assert world_sdf("replay", [BOX], ()) == world_sdf("replay", [BOX])
+    assert not [name for name in models(parse(world_sdf("replay", [BOX]))[0]) if "wall" in name]
+
+
+def test_a_wall_gazebo_could_not_load_is_refused_and_nothing_is_written(tmp_path: Path) -> None:
+    flat = Box(x=0.0, y=3.0, yaw=0.0, length=4.0, width=0.0, height=2.0)
+    with pytest.raises(ValueError, match="finite sizes"):
+        write_world(tmp_path / "item.world", "replay", [BOX], (WALLS[0], flat))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_writing_a_world_with_walls_writes_what_world_sdf_makes(tmp_path: Path) -> None:
+    path = write_world(tmp_path / "item.world", "replay", [CYLINDER], WALLS)
+    assert path.read_text(encoding="utf-8") == world_sdf("replay", [CYLINDER], WALLS)

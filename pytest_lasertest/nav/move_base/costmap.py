@@ -18,6 +18,29 @@ them. `costs()` then inflates, as the InflationLayer does: a cell d m from the n
 cell costs 253 (inscribed) within the footprint's inscribed radius, 252 exp(-cost_scaling_factor
 (d - inscribed)) out to `inflation_radius`, and keeps its own cost beyond; an unknown cell stays
 unknown unless it lies within the inscribed radius.
+
+Given the world's map (`receive_map`), a static layer lies under the obstacle layer, in the
+order costmap_2d's LayeredCostmap::updateMap runs its plugins: static, obstacle, inflation. Each
+layer keeps a grid of its own (`grid` is the obstacle layer's); `costs()` combines them afresh,
+so the obstacle layer's clearing never frees a cell the map marks lethal, and a wall is
+inflated as any lethal cell is, seen or not. As read in ros-planning/navigation noetic-devel
+9ad64419 (costmap_2d/plugins/static_layer.cpp: interpretValue, updateCosts; src/costmap_layer.cpp:
+updateWithTrueOverwrite, updateWithMax; src/layered_costmap.cpp: updateMap) and in
+ros-navigation/navigation2 a3a97043 (the same files under nav2_costmap_2d), our own code:
+
+- the layer turns each map value into a cost once (interpretValue: the unknown value to 255 with
+  its track_unknown_space, else free; from lethal_cost_threshold up lethal; the rest free with
+  trinary_costmap, else scaled by 254 / lethal_cost_threshold; Nav2 also turns its
+  inscribed_obstacle_cost_value into 253);
+- in a rolling window the layer writes each window cell with the map cell under the cell's
+  centre (worldToMap truncates), overwriting the master (updateWithTrueOverwrite's rule, unless
+  use_maximum); a window cell off the map it does not write, and the master keeps what
+  resetMap left there: 255 with the costmap's track_unknown_space, else free;
+- the obstacle layer then raises each cell with updateWithMax: its unknown cells leave the
+  master as it is, its other cells overwrite an unknown master cell and raise any other.
+
+The window's static cells are read from the map once each time the window moves (by whole
+cells), not at each update.
 """
 
 from __future__ import annotations
@@ -31,6 +54,7 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FloatArray, IntArray
+from pytest_lasertest.model.occupancy import OccupancyGrid
 from pytest_lasertest.model.route import place
 from pytest_lasertest.nav.protocol import LaserScan
 from pytest_lasertest.nav.raytrace import clipped, ray_indices
@@ -62,6 +86,42 @@ class CostmapSettings:
         return round(self.size / self.resolution)
 
 
+@dataclass(frozen=True)
+class StaticLayerSettings:
+    """A static layer's parameters, with costmap_2d's names; the defaults are ROS 1's
+    (StaticLayer::onInitialize), `nav2()` Nav2's."""
+
+    # ROS 1: the layer's own, true unless set, the costmap's copied onto it where the costmap
+    # sets one (Costmap2DROS::copyParentParameters). Nav2: the costmap's.
+    track_unknown_space: bool = True
+    lethal_cost_threshold: int = 100  # a map value from this up is lethal (cut to 0 .. 100)
+    unknown_cost_value: int = -1  # the map value that means unknown, read as a byte: 255
+    trinary_costmap: bool = True  # values below the threshold free, else scaled
+    use_maximum: bool = False  # write with the larger cost, not overwrite
+    # Nav2's: the map value that means inscribed (253); ROS 1 has none.
+    inscribed_obstacle_cost_value: int | None = None
+
+    @classmethod
+    def nav2(cls, track_unknown_space: bool) -> StaticLayerSettings:
+        """Nav2's defaults (Costmap2DROS's constructor declares them: unknown_cost_value
+        0xff, inscribed_obstacle_cost_value 99) with the costmap's track_unknown_space."""
+        return cls(track_unknown_space, unknown_cost_value=0xFF, inscribed_obstacle_cost_value=99)
+
+    def costs(self) -> Grid:
+        """interpretValue as a table: the cost (256,) of each map value read as a byte, as the
+        layer's incomingMap reads the map's int8 data into unsigned chars."""
+        value = np.arange(256)
+        threshold = min(max(self.lethal_cost_threshold, 0), 100)
+        below = FREE if self.trinary_costmap else LETHAL * value / max(threshold, 1)
+        # A double converted to unsigned char truncates.
+        costs = np.where(value >= threshold, LETHAL, below).astype(np.uint8)
+        if self.inscribed_obstacle_cost_value is not None:
+            costs[self.inscribed_obstacle_cost_value & 0xFF] = INSCRIBED
+        # Checked first: the unknown value is unknown (or free) whatever the thresholds say.
+        costs[self.unknown_cost_value & 0xFF] = UNKNOWN if self.track_unknown_space else FREE
+        return costs
+
+
 class Costmap:
     """The rolling costmap of one robot, updated scan by scan."""
 
@@ -77,6 +137,7 @@ class Costmap:
         self.grid: Grid = self._window()
         self.origin = (0.0, 0.0)  # m, the world position of cell (0, 0)'s lower left corner
         self.inflation = InflationCost.of(settings, footprint)
+        self.static: StaticLayer | None = None  # the map's layer, under `grid`, once given one
 
     def update(self, scan: LaserScan, robot: tuple[float, float, float]) -> None:
         """One scan's update, the robot at pose [x, y, yaw] (m, m, rad) in the odom frame."""
@@ -101,6 +162,20 @@ class Costmap:
         centres: FloatArray = (cells + 0.5) * self.settings.resolution + np.array(self.origin)
         return centres
 
+    def receive_map(self, grid: OccupancyGrid, settings: StaticLayerSettings) -> None:
+        """Lay the map under the obstacle layer as a static layer (see the module docstring)."""
+        self.static = StaticLayer(grid, settings, self.unseen)
+
+    def combined(self, columns: slice = slice(None), rows: slice = slice(None)) -> Grid:
+        """The layers' costs in the window's block of `columns` and `rows`, indexed [y, x],
+        before inflation: the obstacle layer's grid alone (a view of it) without a map, else the
+        static layer's costs raised by the obstacle layer's (updateWithMax)."""
+        own = self.grid[rows, columns]
+        if self.static is None:
+            return own
+        static = self.static.window(self.origin, self.settings.resolution, self.settings.cells)
+        return with_max(static[rows, columns], own)
+
     def costs(self, columns: slice = slice(None), rows: slice = slice(None)) -> Grid:
         """The costs of the window's block of `columns` and `rows` (all by default) with the
         lethal cells inflated, indexed [y, x]."""
@@ -109,10 +184,12 @@ class Costmap:
         reach = math.ceil(self.settings.inflation_radius / self.settings.resolution)  # cells
         # Lethal cells up to `reach` outside the block inflate into it.
         low_x, low_y = max(x0 - reach, 0), max(y0 - reach, 0)
-        padded = self.grid[low_y : min(y1 + reach, cells), low_x : min(x1 + reach, cells)]
+        padded = self.combined(
+            slice(low_x, min(x1 + reach, cells)), slice(low_y, min(y1 + reach, cells))
+        )
         inflated = self._inflation(padded == LETHAL, reach)
         inflated = inflated[y0 - low_y : y1 - low_y, x0 - low_x : x1 - low_x]
-        own = self.grid[y0:y1, x0:x1]
+        own = padded[y0 - low_y : y1 - low_y, x0 - low_x : x1 - low_x]
         # The InflationLayer writes over an unknown cell only from the inscribed cost up.
         over_unknown = np.where(inflated >= INSCRIBED, inflated, UNKNOWN)
         costs: Grid = np.where(own == UNKNOWN, over_unknown, np.maximum(own, inflated))
@@ -299,6 +376,56 @@ class InflationCost:
         cost = np.where(distance <= self.inscribed, INSCRIBED, cost)
         costs: FloatArray = np.where(distance <= 0.0, LETHAL, cost)
         return costs
+
+
+class StaticLayer:
+    """costmap_2d's StaticLayer holding one map, read through a rolling window."""
+
+    def __init__(self, grid: OccupancyGrid, settings: StaticLayerSettings, unseen: int) -> None:
+        self.map, self.settings = grid, settings
+        costs = settings.costs()[grid.data.view(np.uint8)]
+        if settings.use_maximum:
+            # The larger of the map's cost and what resetMap left in the master cell.
+            costs = np.maximum(costs, np.uint8(unseen))
+        # Row and column 0 stand for off the map, where the layer writes nothing and the master
+        # keeps what resetMap left there.
+        self._cells: Grid = np.pad(costs, ((1, 0), (1, 0)), constant_values=unseen)
+        self._window: tuple[tuple[float, float], float, int, Grid] | None = None
+
+    def window(self, origin: tuple[float, float], resolution: float, cells: int) -> Grid:
+        """What the layer writes into a window of `cells` cells of `resolution` m a side from
+        `origin` (m, its lower left corner), indexed [y, x]: each cell's the map cell under its
+        centre, or the master's reset value off the map. Read again only when the window has
+        moved."""
+        if self._window is not None and self._window[:3] == (origin, resolution, cells):
+            return self._window[3]
+        columns = self._under(origin[0], resolution, cells, self.map.origin[0], self.map.width)
+        rows = self._under(origin[1], resolution, cells, self.map.origin[1], self.map.height)
+        window: Grid = self._cells[np.ix_(rows, columns)]
+        window.setflags(write=False)
+        self._window = (origin, resolution, cells, window)
+        return window
+
+    def _under(
+        self, low: float, resolution: float, cells: int, map_low: float, map_cells: int
+    ) -> IntArray:
+        """Along one axis: the index into `_cells` of the map cell under each window cell's
+        centre (Costmap2D::mapToWorld), 0 off the map; the map's worldToMap refuses a point
+        below its origin and truncates the rest."""
+        centres = low + (np.arange(cells) + 0.5) * resolution
+        index = ((centres - map_low) / self.map.resolution).astype(np.int64)
+        on = (centres >= map_low) & (index < map_cells)
+        under: IntArray = np.where(on, index + 1, 0)
+        return under
+
+
+def with_max(master: Grid, layer: Grid) -> Grid:
+    """CostmapLayer::updateWithMax of `layer` onto `master`, same shape: where the layer is
+    unknown the master stays; elsewhere the layer's cost overwrites an unknown master cell and
+    raises any other."""
+    raised = np.where(master == UNKNOWN, layer, np.maximum(master, layer))
+    combined: Grid = np.where(layer == UNKNOWN, master, raised).astype(np.uint8)
+    return combined
 
 
 def _overlap(shift: int, cells: int) -> slice:

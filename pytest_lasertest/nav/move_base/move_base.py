@@ -19,6 +19,14 @@ Where this differs from ROS, on purpose: one obstacle grid serves as both costma
 costmap is it, inflated where the planner searches; the local costmap is its 10 m window
 around the robot, where unknown reads as free as the local costmap has it. ROS's local costmap
 would forget cells that left its window and came back into it; this one remembers them.
+
+Given the world's map (`receive_map`), the global costmap's costs have a static layer under the
+obstacle grid (`costmap.py`): navfn plans round walls no scan has seen, and no clearing ray
+frees them. The local window reads the obstacle grid alone, as every local costmap of the
+bundled robots' move_base configurations has no static layer (Husky costmap_local.yaml:
+obstacles_laser and inflation; the Jackal's costmap_common_params.yaml plugins: obstacles_layer
+and inflater_layer; the TurtleBot3's local_costmap_params.yaml: static_map false): DWA and the
+recoveries' collision checks see a wall once the scanner does.
 """
 
 from __future__ import annotations
@@ -31,8 +39,15 @@ from enum import Enum
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, Point2D
+from pytest_lasertest.model.occupancy import OccupancyGrid
 from pytest_lasertest.model.robot import Robot
-from pytest_lasertest.nav.move_base.costmap import LETHAL, Costmap, CostmapSettings, InflationCost
+from pytest_lasertest.nav.move_base.costmap import (
+    LETHAL,
+    Costmap,
+    CostmapSettings,
+    InflationCost,
+    StaticLayerSettings,
+)
 from pytest_lasertest.nav.move_base.dwa import LocalPlanner, Surroundings
 from pytest_lasertest.nav.move_base.navfn import windowed_plan
 from pytest_lasertest.nav.move_base.recovery import (
@@ -96,6 +111,7 @@ class MoveBase:
         self.recovered: list[tuple[float, str]] = []  # (s, name): each recovery begun
         # Made at the first scan: the global costmap's window depends on where the robot is.
         self._costmap: Costmap | None = None
+        self._map: OccupancyGrid | None = None  # the world's map, if it has one
         self.recoveries: list[Callable[[], Recovery]] = []
         self._recovery: Recovery | None = None
         self._trigger: Trigger | None = None  # what began the last recovery
@@ -112,6 +128,37 @@ class MoveBase:
         if self._costmap is None:
             raise RuntimeError("move_base has no costmap before its first scan")
         return self._costmap
+
+    def receive_map(self, grid: OccupancyGrid) -> None:
+        """The world's map, as map_server latches /map: the global costmap's static layer.
+
+        Neither the Husky's navigation.yaml nor `settings.py` says whether the global costmap
+        has one: the file is Clearpath's mapless configuration (move_base.launch with
+        no_static_map loads costmap_global_laser.yaml: obstacles_laser and inflation), and with
+        a map move_base.launch loads costmap_global_static.yaml instead (husky/husky
+        noetic-devel dff7c81a, husky_navigation/config). Here, receiving a map is what switches
+        the static layer on. It lies under the obstacle layer (static, obstacle, inflation), as
+        the Jackal's map_nav_params/global_costmap_params.yaml and the TurtleBot3's
+        global_costmap_params.yaml (static_map: true, which Costmap2DROS::loadOldParameters
+        makes static_layer, obstacle_layer, inflation_layer) have it. Clearpath's
+        costmap_global_static.yaml differs: it has a static and an inflation layer and no
+        obstacle layer at all, in the map frame (rolling_window false, the map's size); the
+        imitation keeps its rolling window and its obstacle layer, so the planner still sees
+        what the scans mark.
+        """
+        self._map = grid
+        if self._costmap is not None:
+            self._costmap.receive_map(grid, self._static_layer())
+
+    def _static_layer(self) -> StaticLayerSettings:
+        """The static layer's parameters: ROS 1's defaults, with the global costmap's
+        track_unknown_space, which Costmap2DROS copies onto the layer where a configuration
+        sets it (the Husky's costmap_global_*.yaml set true). Where none does (the Jackal's,
+        the TurtleBot3's) the layer's own default is true while the costmap's is false: the
+        obstacle layer, not tracking unknown space either, then overwrites every cell the map
+        leaves unknown with its own free or lethal one (updateWithMax), as if the layer had
+        read it free."""
+        return StaticLayerSettings(self.settings.global_costmap.track_unknown_space)
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
         """The command of the latest cycle; the costmap and move_base each on their clock."""
@@ -149,6 +196,8 @@ class MoveBase:
         """At the first scan: the global costmap around the robot, and the first goal."""
         points = np.array([pose[:2], *((point.x, point.y) for point in self.route)])
         self._costmap = Costmap(_global_settings(self.settings, points), self.footprint)
+        if self._map is not None:
+            self._costmap.receive_map(self._map, self._static_layer())
         self.recoveries = self._recoveries()
         self._new_goal(time)
 

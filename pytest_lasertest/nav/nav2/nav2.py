@@ -19,12 +19,14 @@ Nav2's servers do on their clocks:
 
 Every command passes the velocity smoother (`velocity_smoother.py`), then, each time the
 smoother publishes, the collision monitor (`collision_monitor.py`). What it did that a report
-should name is in `activity`. Where this differs on purpose: without a map, the global costmap
-is a window over the route (as move_base's here), not the map's extent; with a static layer it
-starts free, as an open field's map would make it, and without one it may track unknown space
-(NavFn then keeps to the cells the scans have cleared, which rays that return nothing never
-clear); NavFn searches a window 5 m around the robot and its goal; goals have no heading. The
-README lists the rest.
+should name is in `activity`. Where this differs on purpose: the global costmap is a window
+over the route (as move_base's here), not the map's extent; without a map, with a static layer
+it starts free, as an open field's map would make it, and without one it may track unknown
+space (NavFn then keeps to the cells the scans have cleared, which rays that return nothing
+never clear); given the world's map (`receive_map`), its static layer holds the map, under the
+obstacle layer (`move_base/costmap.py`), and it tracks unknown space as configured; NavFn
+searches a window 5 m around the robot and its goal; goals have no heading. The README lists
+the rest.
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ import math
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, Point2D
+from pytest_lasertest.model.occupancy import OccupancyGrid
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import place
 from pytest_lasertest.nav.move_base.costmap import LETHAL
@@ -74,6 +77,7 @@ class Nav2:
         self.smoother = VelocitySmoother(s.smoother)
         self.goal_tolerance = s.xy_goal_tolerance  # m: the goal oracle judges by it
         self._global: Nav2Costmap | None = None  # made at the first scan, around the route
+        self._map: OccupancyGrid | None = None  # the world's map, if it has one
         self.plan: FloatArray = np.zeros((0, 2))  # m
         self.failed: str | None = None  # why the navigation stopped, if it did
         self._command = (0.0, 0.0)
@@ -100,6 +104,24 @@ class Nav2:
         self._retries = 0  # the tree's RecoveryNode retries used
         self._tried = 0  # actions of the round robin failed in a row
         self._follow_retried = False  # FollowPath's RecoveryNode retry used
+
+    def receive_map(self, grid: OccupancyGrid) -> None:
+        """The world's map, as map_server latches /map: the global costmap's static layer, if
+        its plugins name one (Costmap2DROS's default plugins do; nav2_no_map_params.yaml's do
+        not, and its costmap ignores the map).
+
+        Only the global costmap takes it. Jazzy's nav2_params.yaml and ROBOTIS's TurtleBot3
+        files give the local costmap no static layer, but Clearpath's a200 and j100 files
+        (robots/husky/nav2.yaml, robots/jackal/nav2.yaml) do name static_layer in the local
+        costmap's plugins too; the imitation's local costmap has none whatever the file says:
+        MPPI, DWB and the behaviours' collision checks see a wall once the scanner does.
+        """
+        self._map = grid
+        static = self.settings.global_.static_layer
+        if self._global is not None and static is not None:
+            # Given after the first scan, not as the simulator gives it: the costmap keeps
+            # the unknown space it was made with.
+            self._global.receive_map(grid, static)
 
     def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
         """The command of the latest cycle, smoothed, as the collision monitor lets it through.
@@ -263,7 +285,16 @@ class Nav2:
         reach = config.source.raytrace_max_range + config.costmap.inflation_radius + 1.0  # m
         size = min(config.costmap.size, 2.0 * (span + reach))
         settings = dataclasses.replace(config.costmap, size=size)
-        return Nav2Costmap(settings, self._global_footprint, config.source, s.marking)
+        static = config.static_layer if self._map is not None else None
+        if static is not None:
+            # The map's own unknown cells, and the window beyond the map, are unknown until
+            # scanned if the costmap tracks unknown space: its master, obstacle and static
+            # layers all read the costmap's track_unknown_space.
+            settings = dataclasses.replace(settings, track_unknown_space=static.track_unknown_space)
+        costmap = Nav2Costmap(settings, self._global_footprint, config.source, s.marking)
+        if static is not None and self._map is not None:
+            costmap.receive_map(self._map, static)
+        return costmap
 
     def _due(self, clock: str, time: float, period: float) -> bool:
         if time < self._next[clock]:

@@ -44,6 +44,7 @@ MAY_BE_NEGATIVE = frozenset(
         "decel_lim_x",
         "decel_lim_theta",
         "lookahead_time",
+        "unknown_cost_value",  # -1, as a map's int8 writes unknown, reads 255 as a byte
     }
 )
 # Past these a figure is a typo, and the cycle would take seconds and gigabytes.

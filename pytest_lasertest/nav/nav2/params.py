@@ -21,6 +21,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from pytest_lasertest.model.robot import ParameterValue
+from pytest_lasertest.nav.move_base.costmap import StaticLayerSettings
 from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings
 from pytest_lasertest.nav.nav2.costmap_params import has_static_layer, read_costmap
 from pytest_lasertest.nav.nav2.dwb import CRITICS as DWB_CRITICS
@@ -196,11 +197,23 @@ def _local_costmap(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings
 def _global_costmap(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
     config = read_costmap(node, settings.global_)
     if has_static_layer(node):
-        # The worlds here are open ground: a static layer knows their map all free. Without
-        # one (Nav2's nav2_no_map_params.yaml) unknown space stays unknown until scanned.
+        # A world without a map is open ground: a static layer knows its map all free.
+        # Without one (Nav2's nav2_no_map_params.yaml) unknown space stays unknown until
+        # scanned, and a world's map has nowhere to go.
+        static = _static_layer(node, config.costmap.track_unknown_space)
         costmap = dataclasses.replace(config.costmap, track_unknown_space=False)
-        config = dataclasses.replace(config, costmap=costmap)
+        config = dataclasses.replace(config, costmap=costmap, static_layer=static)
+    else:
+        config = dataclasses.replace(config, static_layer=None)
     return dataclasses.replace(settings, global_=config)
+
+
+def _static_layer(node: NodeParameters, track_unknown_space: bool) -> StaticLayerSettings:
+    """The static layer's parameters. Nav2's StaticLayer::getParameters reads them from the
+    costmap node, not from under the layer's name (nav2_costmap_2d/plugins/static_layer.cpp at
+    a3a97043), with Costmap2DROS's defaults; track_unknown_space is the costmap's."""
+    settings: StaticLayerSettings = node.fields("", StaticLayerSettings.nav2(track_unknown_space))
+    return settings
 
 
 def _planner_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from pytest_lasertest.nav.move_base.costmap import CostmapSettings
+from pytest_lasertest.nav.move_base.costmap import CostmapSettings, StaticLayerSettings
 from pytest_lasertest.nav.move_base.navfn import NavfnSettings
 from pytest_lasertest.nav.nav2.behaviors import BehaviorSettings
 from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings
@@ -92,12 +92,16 @@ def _default_critics() -> tuple[MppiCritic, ...]:
 
 @dataclass(frozen=True)
 class CostmapConfig:
-    """One of Nav2's two costmaps: its window and inflation, its laser source, and the
-    footprint it plans for (None: the robot's)."""
+    """One of Nav2's two costmaps: its window and inflation, its laser source, the
+    footprint it plans for (None: the robot's), and its static layer if it takes the world's
+    map (only the global costmap's is read: see `Nav2.receive_map`)."""
 
     costmap: CostmapSettings
     source: ObservationSource = field(default_factory=ObservationSource)
     footprint: tuple[tuple[float, float], ...] | None = None  # m
+    # With the costmap's track_unknown_space as configured: without a map `costmap` has it
+    # false, the static layer standing for an open field's map, all free.
+    static_layer: StaticLayerSettings | None = None
 
 
 def _local() -> CostmapConfig:
@@ -110,7 +114,8 @@ def _local() -> CostmapConfig:
 
 def _global() -> CostmapConfig:
     # Nav2 tracks unknown space here, but its static layer has the map's free space known
-    # from the start; the worlds here are open ground, their map all free.
+    # from the start; a world without a map is open ground, its map all free. Given the world's
+    # map, the costmap tracks unknown space as nav2_params.yaml sets it (true).
     return CostmapConfig(
         CostmapSettings(
             size=100.0,
@@ -118,7 +123,8 @@ def _global() -> CostmapConfig:
             cost_scaling_factor=3.0,
             update_frequency=1.0,
             track_unknown_space=False,
-        )
+        ),
+        static_layer=StaticLayerSettings.nav2(track_unknown_space=True),
     )
 
 
