@@ -22,11 +22,13 @@ It prints a row per mutant and method (cells killed of those tried, per seed), t
 (summed over seeds; random is random corridor).
 
     python benchmarks/fault_finding.py [--seeds 1 2 3] [--jobs 2] [--mutants ...] [--pairs ...]
+                                       [--cells MUTANT:PAIR ...] [--without-world]
 """
 
 from __future__ import annotations
 
 import argparse
+import functools
 import hashlib
 import math
 import multiprocessing
@@ -267,14 +269,15 @@ def _seed(cell: Cell, name: str) -> int:
 _BENCH: Bench | None = None
 
 
-def _work(cell: Cell) -> list[Outcome]:
-    """All three methods on one cell, random at the gate's budget."""
+def _work(cell: Cell, methods: tuple[str, ...] = METHODS) -> list[Outcome]:
+    """The gate on one cell, then each random method of `methods` at the gate's budget."""
     global _BENCH
     if _BENCH is None:
         _BENCH = Bench()
     found = gate(_BENCH, cell)
     budget = max(found.simulations, 1)
-    return [found, *(random_placements(_BENCH, cell, method, budget) for method in METHODS[1:])]
+    others = (method for method in methods if method != "gate")
+    return [found, *(random_placements(_BENCH, cell, method, budget) for method in others)]
 
 
 def main() -> None:
@@ -283,18 +286,29 @@ def main() -> None:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--mutants", nargs="+", default=[mutant.name for mutant in MUTANTS])
     parser.add_argument("--pairs", nargs="+", default=None)
+    parser.add_argument(
+        "--cells", nargs="+", default=None, help="MUTANT:PAIR cells only, instead of every one"
+    )
+    parser.add_argument(
+        "--without-world", action="store_true", help="leave random world placement out (faster)"
+    )
     args = parser.parse_args()
+    methods = METHODS[:2] if args.without_world else METHODS
     pairs = args.pairs or [pair.name for pair in load_pairs_file(PAIRS).pairs]
-    cells = [Cell(m, p, s) for s in args.seeds for m in args.mutants for p in pairs]
+    chosen = [tuple(cell.split(":")) for cell in args.cells or ()]
+    if chosen:
+        args.mutants = list(dict.fromkeys(mutant for mutant, _ in chosen))
+    every = [(m, p) for m in args.mutants for p in pairs]
+    cells = [Cell(m, p, s) for s in args.seeds for m, p in every if not chosen or (m, p) in chosen]
     began = time.perf_counter()
     outcomes: list[Outcome] = []
     with multiprocessing.get_context("spawn").Pool(args.jobs) as pool:
-        for done in pool.imap_unordered(_work, cells):
+        for done in pool.imap_unordered(functools.partial(_work, methods=methods), cells):
             outcomes += done
             print(
                 f"  {done[0].cell}: {', '.join(map(_progress, done))}", file=sys.stderr, flush=True
             )
-    print(_table(outcomes, args.mutants, args.seeds))
+    print(_table(outcomes, args.mutants, args.seeds, methods))
     print(f"({time.perf_counter() - began:.0f} s)")
     print(_last_line(outcomes, args.mutants, args.seeds))
 
@@ -305,13 +319,15 @@ def _progress(outcome: Outcome) -> str:
     return f"{outcome.method} {killed} ({outcome.simulations})"
 
 
-def _table(outcomes: list[Outcome], mutants: list[str], seeds: list[int]) -> str:
+def _table(
+    outcomes: list[Outcome], mutants: list[str], seeds: list[int], methods: tuple[str, ...]
+) -> str:
     """A row per mutant and method: cells killed of those tried, and simulations, per seed; then
     the pairs whose cells any seed killed."""
     header = ["mutant", "method", *(f"seed {seed}" for seed in seeds), "killed on"]
     rows = [header]
     for mutant in mutants:
-        for method in METHODS:
+        for method in methods:
             mine = [o for o in outcomes if o.cell.mutant == mutant and o.method == method]
             per_seed = [[o for o in mine if o.cell.seed == seed] for seed in seeds]
             figures = [

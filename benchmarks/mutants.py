@@ -5,8 +5,13 @@ stack, written as a team would have it: a filter or a setting tuned for the scan
 (the baseline), which does no harm with it and can do harm with the new one. A fault is put into
 the default controller, move_base, through the public controller interface: `faulty(mutant,
 baseline)` makes a controller factory that changes each scan (or the command) on its way in, as
-the team's filter node or misconfigured costmap would. Each names the source it imitates; the
-code is ours.
+the team's filter node or misconfigured costmap would, and builds move_base with the mutant's
+navigation parameters where the fault is a setting (a costmap's update rate, the planner's
+unknown space). Each names the source it imitates; the code is ours.
+
+A costmap fault is written as what the misconfigured costmap does with the scan, where a scan
+can say it exactly (an observation source that drops every point of a raised scanner is a scan
+of no readings), else as the parameter itself.
 
 `nan_guard` is the equivalent mutant: it replaces NaN readings by +inf (REP 117's "no return"),
 and the simulated scanner publishes no NaN, so it must never be killed.
@@ -26,9 +31,12 @@ from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose3D
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.nav.move_base import MoveBase
+from pytest_lasertest.nav.move_base.settings import NavigationSettings
 from pytest_lasertest.nav.protocol import Controller, ControllerFactory, LaserScan, Odometry
 
 Command = tuple[float, float]  # m/s, rad/s
+# The navigation parameters the team set for the baseline scanner, from the robot's own.
+Setting = Callable[[NavigationSettings, LaserProfile], NavigationSettings]
 
 
 class Fault:
@@ -51,6 +59,7 @@ class Mutant:
     source: str  # the real case or the real code it imitates
     make: Callable[[LaserProfile], Fault]  # the fault, tuned for the baseline scanner
     equivalent: bool = False  # changes nothing the simulator can publish
+    navigation: Setting | None = None  # move_base's parameters as the fault has them
 
 
 @dataclass
@@ -71,7 +80,10 @@ def faulty(mutant: Mutant | None, baseline: LaserProfile) -> ControllerFactory:
     def make(robot: Robot, route: tuple[Point2D, ...]) -> Controller:
         if mutant is None:
             return MoveBase(robot, route)
-        return FaultyController(MoveBase(robot, route), mutant.make(baseline))
+        settings = NavigationSettings.from_parameters(robot.navigation)
+        if mutant.navigation is not None:
+            settings = mutant.navigation(settings, baseline)
+        return FaultyController(MoveBase(robot, route, settings), mutant.make(baseline))
 
     return make
 
@@ -101,7 +113,7 @@ class Speckle(Fault):
         agree = ~np.isnan(windows).any(axis=1) & ~apart.any(axis=1)
         valid = ranges > self.max_range  # beyond max_range: left alone
         for offset in range(self.window):
-            valid[offset : offset + len(agree)] |= agree
+            valid[offset : offset + len(windows)] |= agree
         return _with_ranges(scan, np.where(valid, ranges, np.nan))
 
 
@@ -251,6 +263,176 @@ class NanGuard(Fault):
         return _with_ranges(scan, np.where(np.isnan(scan.ranges), np.inf, scan.ranges))
 
 
+class ObstacleHeight(Fault):
+    """costmap_2d's observation source `max_obstacle_height`, set to the decimetre above the old
+    scan plane: 0.5 m over the Husky's 0.44 m laser, the value of the lidar source in
+    ros-planning/navigation issue 485 (where it is suspected of "chopping off" the laser), as the
+    TurtleBot's scan source kept 0.25-0.35 m until a laser mounted higher was lost to it
+    (turtlebot/turtlebot_apps PR 157). ObservationBuffer::bufferCloud (costmap_2d
+    observation_buffer.cpp, 9ad64419) keeps only the points from min_obstacle_height to
+    max_obstacle_height in the global frame, and a level scan's points all lie at the laser's
+    height: the old scanner's all stay; a scanner mounted above the limit gives observations
+    with no points, which neither mark nor clear, exactly as a scan with every reading NaN.
+    Exposed by `upright` (0.54 m): the costmap is blind to everything."""
+
+    def __init__(self, baseline: LaserProfile) -> None:
+        self.max_height = math.ceil(baseline.scan_height * 10.0) / 10.0  # m
+
+    def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
+        if scan.mount.xyz[2] <= self.max_height:
+            return scan
+        return _with_ranges(scan, np.full(len(scan.ranges), np.nan))
+
+
+class DropScans(Fault):
+    """topic_tools' `drop scan X Y` between the driver and move_base (ros/ros_comm
+    tools/topic_tools/src/drop.cpp, 845f7460: X of every Y messages dropped, the Y-th
+    forwarded), the "downsampling the inputs to costmaps" of ros-planning/navigation issue 1196,
+    sized so that the old scanner still feeds move_base at `rate` Hz: drop 4 of 5 at 50 Hz. The
+    same counts feed the costmap at 2 Hz from a 10 Hz scanner and at 1.1 Hz from a 5.5 Hz one
+    (`slower`, `lms111_to_rplidar_a1`), so that whatever a turn or a passed obstacle reveals
+    reaches the costmap up to 0.4 or 0.7 s late. The costmap keeps its newest observation where
+    it was taken (observation_persistence 0), so between forwarded scans move_base is given the
+    last one again, placed where the robot was when it was measured; before the first, a scan
+    of no readings (an empty observation buffer)."""
+
+    def __init__(self, baseline: LaserProfile, rate: float = 10.0) -> None:
+        self.every = max(1, round(baseline.update_rate / rate))  # Y; X = Y - 1
+        self.count = 0
+        self.kept: tuple[LaserScan, Odometry] | None = None
+
+    def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
+        self.count += 1
+        if self.count % self.every == 0:
+            self.kept = (scan, odometry)
+            return scan
+        if self.kept is None:
+            return _with_ranges(scan, np.full(len(scan.ranges), np.nan))
+        kept, then = self.kept
+        # The base frame the scan was taken in, seen from the current one.
+        cos, sin = math.cos(odometry.yaw), math.sin(odometry.yaw)
+        dx, dy = then.x - odometry.x, then.y - odometry.y  # m
+        ahead, left = cos * dx + sin * dy, -sin * dx + cos * dy  # m
+        turn = then.yaw - odometry.yaw  # rad
+        x, y, z = kept.mount.xyz
+        roll, pitch, yaw = kept.mount.rpy
+        cos, sin = math.cos(turn), math.sin(turn)
+        placed = (ahead + cos * x - sin * y, left + sin * x + cos * y, z)
+        return LaserScan(
+            kept.stamp, kept.ranges, kept.meta, Pose3D(placed, (roll, pitch, yaw + turn))
+        )
+
+
+class TooNearStops(Fault):
+    """A safety relay between move_base and the base, as ROBOTIS-GIT/turtlebot3's
+    turtlebot3_obstacle_detection.py (da785b72) is one: while the least reading of the front half
+    of the scan is below `stop_distance`, forward speed is zeroed and the turn passed on. Its
+    min() takes REP 117's -inf ("nearer than range_min") for the least of all. The team set it
+    0.25 m from the laser (the Husky's bumper is 0.16 m ahead of it) and skipped 0.0
+    (sick_scan_xd's "no echo"). With the old range_min of 0.1 m, -inf only ever meant a contact;
+    with `min_range`'s 0.6 m it stops the robot for anything within 0.6 m ahead, which it may
+    pass or turn past. NaN is no reading."""
+
+    def __init__(self, stop_distance: float = 0.25) -> None:
+        self.stop_distance = stop_distance  # m
+
+    def command(self, command: Command, scan: LaserScan) -> Command:
+        meta, ranges = scan.meta, scan.ranges
+        angles = meta.angle_min + np.arange(len(ranges)) * meta.angle_increment
+        rotation = scan.mount.rotation()[:2, :2]
+        ahead = (rotation @ np.stack([np.cos(angles), np.sin(angles)]))[0] > 0.0
+        readings = ranges[ahead & ~np.isnan(ranges) & (ranges != 0.0)]
+        if len(readings) and float(readings.min()) < self.stop_distance:
+            return 0.0, command[1]
+        return command
+
+
+class ScanToBaseFrame(Fault):
+    """The scan taken through a point cloud into the robot's base frame and back, as teams do to
+    merge or self-filter scans: ros-perception/pointcloud_to_laserscan (d71ed2ea) projects it
+    with laser_geometry (laserscan_to_pointcloud_node.cpp) and bins the points by their bearing
+    from the base (pointcloud_to_laserscan_node.cpp: the nearest point of each bin, the index
+    truncated), with the old scanner's angle_increment, range_min, range_max and scan_time, and
+    the node's other defaults: bearings -pi to pi, heights that keep any scan plane above the
+    ground, and `use_inf`, so that a bin no point falls in reads +inf, along which costmap_2d's
+    inf_is_valid (the Husky's) then clears, from the base.
+    The old scanner put a point in (nearly) every bin its field of view covers. A sparser one
+    (`fewer_beams`, `lms111_to_rplidar_a1`) leaves the bins between its readings empty, clearing
+    past and through a pole it missed; a narrower one (`narrower`) the bins beside the robot,
+    clearing what it passed; one with a larger range_min (`min_range`) the bins of whatever is
+    nearer, its -inf being no point (near_as_far's clearing, by another road). A bin past the
+    last (a bearing of exactly pi, which the node would write beyond its array) is left out."""
+
+    def __init__(self, baseline: LaserProfile) -> None:
+        self.increment = baseline.angle_increment  # rad
+        self.bins = math.ceil(2.0 * math.pi / self.increment)
+        self.range_min, self.range_max = baseline.range_min, baseline.range_max  # m
+        self.meta = dataclasses.replace(
+            baseline.to_laserscan_meta(),
+            angle_min=-math.pi,
+            angle_max=math.pi,
+            angle_increment=self.increment,
+        )
+
+    def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
+        meta, ranges = scan.meta, scan.ranges
+        angles = meta.angle_min + np.arange(len(ranges)) * meta.angle_increment
+        kept = (ranges >= meta.range_min) & (ranges < meta.range_max)  # projectLaser's test
+        in_laser = ranges[kept] * np.stack([np.cos(angles[kept]), np.sin(angles[kept])])
+        points = scan.mount.rotation()[:2, :2] @ in_laser  # (2, P) m, in the base frame
+        x, y = points[0] + scan.mount.xyz[0], points[1] + scan.mount.xyz[1]
+        distance = np.hypot(x, y)
+        index = ((np.arctan2(y, x) + math.pi) / self.increment).astype(np.int64)
+        inside = (distance >= self.range_min) & (distance <= self.range_max) & (index < self.bins)
+        binned = np.full(self.bins, np.inf)
+        np.minimum.at(binned, index[inside], distance[inside])
+        return LaserScan(scan.stamp, binned, self.meta, Pose3D())
+
+
+def _slow_costmap(settings: NavigationSettings, baseline: LaserProfile) -> NavigationSettings:
+    """costmap_2d's `update_frequency` lowered to 1 Hz, as turtlebot/turtlebot_apps'
+    global_costmap_params.yaml runs it and as ros-planning/navigation issue 1196's maintainer
+    suggests for a CPU that misses its map-update rate. Costmap2DROS::mapUpdateLoop (costmap_2d
+    costmap_2d_ros.cpp, 9ad64419) updates on its own clock, the obstacle layer taking the
+    newest observation: a scan waits up to a second to be seen. With the old 270 deg, 50 Hz
+    scanner whatever the robot turned toward had long been in the costmap; a narrower one first
+    reads what lies beside the robot during the turn (`narrower`), a slower one adds its own
+    period to the wait (`slower`, `lms111_to_rplidar_a1`). Both costmaps, as the imitation has
+    one grid for both."""
+    costmap = dataclasses.replace(settings.costmap, update_frequency=1.0)
+    return dataclasses.replace(settings, costmap=costmap)
+
+
+def _inf_not_valid(settings: NavigationSettings, baseline: LaserProfile) -> NavigationSettings:
+    """The laser source without `inf_is_valid`, costmap_2d's default: a team whose old scanner
+    published 0.0 for no return (sick_scan_xd) had no use for it, as the drivers of
+    uos/sick_tim issue 54 (0.0) and ros-drivers/urg_node PR 8 (NaN) made it useless. With a
+    scanner that publishes REP 117's +inf (`lms111_to_rplidar_a1`), laser_geometry's projection
+    drops every no-return reading, so no ray clears along it: the global costmap keeps unseen
+    cells unknown (navfn's costliest) and a stale mark stands until a reading ends behind it. A
+    team whose old scanner published +inf would have seen that, so for it nothing changes."""
+    if baseline.driver.no_return == "inf":
+        return settings
+    costmap = dataclasses.replace(settings.costmap, inf_is_valid=False)
+    return dataclasses.replace(settings, costmap=costmap)
+
+
+def _known_space_only(settings: NavigationSettings, baseline: LaserProfile) -> NavigationSettings:
+    """navfn's `allow_unknown` false, as turtlebot/turtlebot_apps PR 122 set it (with the
+    obstacle layer's track_unknown_space, which the Husky's global costmap has: "needed for
+    disabling global path planning through unknown space"; ros-planning/navigation issue 261):
+    navfn_ros.cpp (9ad64419) then makes every cell no ray has crossed an obstacle. A 270 deg
+    scanner whose no-return clears had seen every cell a plan around an obstacle needs before
+    the plan needed it; a narrower one has not seen what lies beside the robot or behind an
+    obstacle (`narrower`), and navfn finds no plan. Set only where the old scanner's no-return
+    clears (REP 117's +inf): with a driver that publishes 0.0 (sick_scan_xd) open space stays
+    unknown, and a team would have found its robot without a plan on the first day."""
+    if baseline.driver.no_return != "inf":
+        return settings
+    navfn = dataclasses.replace(settings.navfn, allow_unknown=False)
+    return dataclasses.replace(settings, navfn=navfn)
+
+
 MUTANTS = (
     Mutant(
         "speckle",
@@ -318,5 +500,51 @@ MUTANTS = (
         "REP 117",
         lambda baseline: NanGuard(),
         equivalent=True,
+    ),
+    Mutant(
+        "max_height",
+        "the costmap's max_obstacle_height, just above the old scan plane, drops a raised scan",
+        "ros-planning/navigation issue 485; turtlebot/turtlebot_apps PR 157; costmap_2d "
+        "observation_buffer.cpp bufferCloud, 9ad64419",
+        ObstacleHeight,
+    ),
+    Mutant(
+        "slow_costmap",
+        "the costmaps updated at 1 Hz, as the old scanner's wide early view allowed",
+        "ros-planning/navigation issue 1196; costmap_2d costmap_2d_ros.cpp mapUpdateLoop, 9ad64419",
+        lambda baseline: Fault(),
+        navigation=_slow_costmap,
+    ),
+    Mutant(
+        "inf_not_valid",
+        "the costmap's inf_is_valid left false, of no use with the old scanner's 0.0 no-return",
+        "uos/sick_tim issue 54; ros-drivers/urg_node PR 8; costmap_2d obstacle_layer.cpp, 9ad64419",
+        lambda baseline: Fault(),
+        navigation=_inf_not_valid,
+    ),
+    Mutant(
+        "drop_scans",
+        "4 of every 5 scans dropped on their way to move_base, sized for 50 Hz",
+        "ros/ros_comm topic_tools drop.cpp, 845f7460; ros-planning/navigation issue 1196",
+        DropScans,
+    ),
+    Mutant(
+        "too_near_stops",
+        "a safety relay whose min() takes -inf (too near) for the nearest reading",
+        "ROBOTIS-GIT/turtlebot3 turtlebot3_obstacle_detection.py, da785b72",
+        lambda baseline: TooNearStops(),
+    ),
+    Mutant(
+        "base_frame_scan",
+        "the scan re-binned in the base frame at the old increment; an empty bin reads +inf",
+        "ros-perception/pointcloud_to_laserscan pointcloud_to_laserscan_node.cpp, d71ed2ea",
+        ScanToBaseFrame,
+    ),
+    Mutant(
+        "known_space_only",
+        "navfn's allow_unknown false, which a scanner that sees all around never notices",
+        "turtlebot/turtlebot_apps PR 122; ros-planning/navigation navfn_ros.cpp, 9ad64419",
+        lambda baseline: Fault(),
+        navigation=_known_space_only,
     ),
 )

@@ -23,6 +23,10 @@ import pytest_lasertest.solver.plan  # noqa: F401  (see below)
 # `$(find)` reaches a substitution_args module the expansion did not patch.
 pytest_plugins = ["pytester"]
 
+# The pairs files under data/ are inputs the tests read (the worlds take minutes to drive), not
+# items of this suite: the plugin would otherwise collect every `*.lasertest.yaml` it passes.
+collect_ignore = ["data"]
+
 # The helpers assert too (assert_one_clean_error, the corpus's assert_profile): rewrite their
 # asserts as pytest does the tests', so that a failure shows the values. This must come before
 # they are first imported.

@@ -77,7 +77,9 @@ class LaserScan:
         return points
 
 
-@functools.cache
+# Bounded: a scanner's mount is fixed, but a controller that moves it per scan (a filter placing
+# a scan where its sweep ended) must not grow the process without end.
+@functools.lru_cache(maxsize=64)
 def _beam_directions(
     meta: LaserScanMeta, mount: Pose3D, count: int
 ) -> tuple[FloatArray, FloatArray]:

@@ -23,6 +23,7 @@ from hypothesis import HealthCheck, Phase, Verbosity, event, given, reject, sett
 from hypothesis import seed as seeded
 from hypothesis import strategies as st
 from hypothesis.database import DirectoryBasedExampleDatabase, ExampleDatabase
+from hypothesis.errors import Unsatisfiable
 from hypothesis.statistics import collector, describe_statistics
 
 from pytest_lasertest.search.budgets import Budget
@@ -108,6 +109,8 @@ def search(
             probe()
         except failing as failure:
             return SearchOutcome(failure, _described(found, key))
+        except Unsatisfiable:
+            pass  # every draw was rejected: the trial counted them, and nothing failed
     return SearchOutcome(None, _described(found, key))
 
 

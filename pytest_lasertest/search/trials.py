@@ -168,7 +168,10 @@ class Trials:
     def _drive(self, profile: LaserProfile, placement: Placement) -> Run:
         setting = self.setting
         if not setting.cache.knows(setting.scenario(profile, placement), setting.controller):
-            if self.shrink_simulations >= self.shrink_budget:
+            # The shrink budget bounds only what follows the first failure: without one, a budget
+            # of 0 would refuse the first trial too.
+            shrinking = self.simulations_to_failure is not None
+            if shrinking and self.shrink_simulations >= self.shrink_budget:
                 raise Untested(BUDGET_SPENT)
             self.simulations += 1
         return setting.drive(profile, placement)

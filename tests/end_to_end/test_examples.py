@@ -57,6 +57,10 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
         # a 5 cm box, and moved a few centimetres along the route the 16-beam robot drives
         # into it while the 32-beam robot passes.
         "examples/paper.lasertest.yaml::size[candidate-misses-2]",
+        # A placement to steer round: a 0.4 m pole 0.2 m left of the route, moved 0.19 m on by
+        # the search; the 32-beam robot reads it with two beams and passes it, the 16-beam robot
+        # with one, and stops beside it until the stuck oracle fires (a regression).
+        "examples/paper.lasertest.yaml::size[avoid-1]",
         # A placement to steer round (found by the search around the witness, a pole beside
         # the first leg): the robot that sees +-1 rad gets stuck beside it, the one that sees
         # +-1.57 rad passes. A regression both scanners read: the difference is in what the

@@ -122,3 +122,11 @@ def test_the_statistics_count_each_outcome() -> None:
     outcome = search(BOX, Recorder(threshold=1.0), Failed, BUDGET, key="k", seed=0, database=None)
     assert "passed" in outcome.statistics
     assert f"{BUDGET.examples} passing" in outcome.statistics
+
+
+def test_a_search_whose_every_draw_is_rejected_ends_without_a_failure() -> None:
+    def refuse(offset: Offset) -> str:
+        raise Untested("rejected: no longer discriminating")
+
+    outcome = search(BOX, refuse, Failed, BUDGET, key="item", seed=0, database=None)
+    assert outcome.failure is None

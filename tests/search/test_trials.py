@@ -1,0 +1,46 @@
+"""A search's trials (`search/trials.py`): what the shrink budget bounds, driven in PyBullet with
+a controller whose outcome is known."""
+
+from __future__ import annotations
+
+import pytest
+
+from pytest_lasertest.model.geometry import Point2D
+from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.nav.protocol import Controller, LaserScan, Odometry
+from pytest_lasertest.pairsfile.controller import ControllerChoice
+from pytest_lasertest.search.drives import RunCache
+from pytest_lasertest.search.offsets import Offset, Untested
+from pytest_lasertest.search.plans import avoid_for
+from pytest_lasertest.search.trials import BUDGET_SPENT, Setting, TrialFailed, Trials
+from pytest_lasertest.sim.client import PhysicsClient
+from tests.helpers.paper import PAPER, scene
+
+
+class Standing:
+    """A controller that never moves: every robot is stuck, whatever its scanner."""
+
+    def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
+        return 0.0, 0.0
+
+
+def standing(robot: Robot, route: tuple[Point2D, ...]) -> Controller:
+    return Standing()
+
+
+def test_without_a_shrink_budget_the_first_trial_is_still_driven_and_classified() -> None:
+    pair = next(pair for pair in PAPER.pairs if pair.name == "size")
+    witness = avoid_for(PAPER, scene(pair.name))[0]
+    choice = ControllerChoice("standing", "tests/search/test_trials.py", standing)
+    with PhysicsClient() as client:
+        setting = Setting(PAPER, pair, choice, 1, client, RunCache())
+        trials = Trials(setting, scene(pair.name), witness.placement, (0.05, 1.0), "candidate", 0)
+        with pytest.raises(TrialFailed) as failed:
+            trials(Offset())
+        # The candidate, then the baseline to classify the failure: both stand still.
+        assert trials.simulations == 2
+        assert failed.value.result.classification == "pre-existing"
+        # After the first failure a budget of 0 drives nothing more.
+        with pytest.raises(Untested, match=BUDGET_SPENT):
+            trials(Offset(x=0.01))
+        assert trials.simulations == 2
