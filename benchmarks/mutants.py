@@ -92,6 +92,11 @@ def _with_ranges(scan: LaserScan, ranges: FloatArray, **meta: float) -> LaserSca
     return LaserScan(scan.stamp, ranges, dataclasses.replace(scan.meta, **meta), scan.mount)
 
 
+def _planar(x: float, y: float, yaw: float) -> Pose3D:
+    """A pose in the ground plane: `x`, `y` m and `yaw` rad, as odometry or a move in it."""
+    return Pose3D((x, y, 0.0), (0.0, 0.0, yaw))
+
+
 class Speckle(Fault):
     """laser_filters' LaserScanSpeckleFilter, distance type: a reading nearer than `max_range`
     is kept only if, in some window of `window` consecutive beams holding it, every reading is
@@ -113,7 +118,7 @@ class Speckle(Fault):
         agree = ~np.isnan(windows).any(axis=1) & ~apart.any(axis=1)
         valid = ranges > self.max_range  # beyond max_range: left alone
         for offset in range(self.window):
-            valid[offset : offset + len(windows)] |= agree
+            valid[offset : offset + len(agree)] |= agree
         return _with_ranges(scan, np.where(valid, ranges, np.nan))
 
 
@@ -204,12 +209,8 @@ class SweepSkew(Fault):
 
     def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
         period = scan.meta.scan_time  # s
-        turn, ahead = odometry.angular * period, odometry.linear * period  # rad, m
-        cos, sin = math.cos(turn), math.sin(turn)
-        x, y, z = scan.mount.xyz
-        roll, pitch, yaw = scan.mount.rpy
-        mount = Pose3D((ahead + cos * x - sin * y, sin * x + cos * y, z), (roll, pitch, yaw + turn))
-        return LaserScan(scan.stamp, scan.ranges, scan.meta, mount)
+        moved = _planar(odometry.linear * period, 0.0, odometry.angular * period)
+        return LaserScan(scan.stamp, scan.ranges, scan.meta, moved.then(scan.mount))
 
 
 class StaleSweep(Fault):
@@ -310,17 +311,12 @@ class DropScans(Fault):
             return _with_ranges(scan, np.full(len(scan.ranges), np.nan))
         kept, then = self.kept
         # The base frame the scan was taken in, seen from the current one.
-        cos, sin = math.cos(odometry.yaw), math.sin(odometry.yaw)
-        dx, dy = then.x - odometry.x, then.y - odometry.y  # m
-        ahead, left = cos * dx + sin * dy, -sin * dx + cos * dy  # m
-        turn = then.yaw - odometry.yaw  # rad
-        x, y, z = kept.mount.xyz
-        roll, pitch, yaw = kept.mount.rpy
-        cos, sin = math.cos(turn), math.sin(turn)
-        placed = (ahead + cos * x - sin * y, left + sin * x + cos * y, z)
-        return LaserScan(
-            kept.stamp, kept.ranges, kept.meta, Pose3D(placed, (roll, pitch, yaw + turn))
+        taken = (
+            _planar(odometry.x, odometry.y, odometry.yaw)
+            .inverse()
+            .then(_planar(then.x, then.y, then.yaw))
         )
+        return LaserScan(kept.stamp, kept.ranges, kept.meta, taken.then(kept.mount))
 
 
 class TooNearStops(Fault):
@@ -375,12 +371,8 @@ class ScanToBaseFrame(Fault):
         )
 
     def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
-        meta, ranges = scan.meta, scan.ranges
-        angles = meta.angle_min + np.arange(len(ranges)) * meta.angle_increment
-        kept = (ranges >= meta.range_min) & (ranges < meta.range_max)  # projectLaser's test
-        in_laser = ranges[kept] * np.stack([np.cos(angles[kept]), np.sin(angles[kept])])
-        points = scan.mount.rotation()[:2, :2] @ in_laser  # (2, P) m, in the base frame
-        x, y = points[0] + scan.mount.xyz[0], points[1] + scan.mount.xyz[1]
+        # projectLaser keeps the readings from range_min to below range_max.
+        x, y = scan.points_in_base(within=scan.meta.range_max).T  # (P,), (P,) m
         distance = np.hypot(x, y)
         index = ((np.arctan2(y, x) + math.pi) / self.increment).astype(np.int64)
         inside = (distance >= self.range_min) & (distance <= self.range_max) & (index < self.bins)
