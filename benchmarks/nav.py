@@ -21,7 +21,7 @@ from collections.abc import Callable
 from time import perf_counter
 from typing import Any
 
-from sim import PAPER, ROUTE, SCANNER, SCENES, SIMULATED, START, bare_physics
+from sim import SIMULATED, WORLDS, bare_physics
 
 from pytest_lasertest.model.geometry import Point2D
 from pytest_lasertest.model.robot import Robot
@@ -29,7 +29,7 @@ from pytest_lasertest.nav.move_base import MoveBase
 from pytest_lasertest.nav.nav2.nav2 import Nav2
 from pytest_lasertest.nav.nav2.settings import Nav2Settings
 from pytest_lasertest.sim.client import PhysicsClient
-from pytest_lasertest.sim.scenario import Scenario, run_scenario
+from pytest_lasertest.sim.scenario import run_scenario
 
 
 class TimedMoveBase(MoveBase):
@@ -105,11 +105,11 @@ def main() -> None:
     args = parser.parse_args()
     command_name = "DWA" if args.controller == "move_base" else "MPPI"
     cycles, ratios = [], []
-    obstacles = SCENES["beside the route"]
+    world = WORLDS["beside the route"]
     with PhysicsClient() as client:
         for _ in range(args.runs):
             made: list[Timed] = []
-            scenario = Scenario(PAPER.robot, SCANNER, obstacles, START, ROUTE, SIMULATED, seed=0)
+            scenario = world.scenario(SIMULATED)
             run = run_scenario(scenario, _keeping(made, TIMED[args.controller]), client)
             (controller,) = made
             period = 1.0 / controller.controller_frequency  # s

@@ -49,10 +49,20 @@ def test_the_solver_benchmark_runs_and_ends_with_its_figures() -> None:
 SIM_LINE = re.compile(r"real-time factor: \d+; ratio to bare physics: [\d.]+")
 
 
+MAP_LINE = re.compile(
+    r"map: real-time factor \d+ in the aisle, \d+ on its route without walls; "
+    r"a simulated second costs [\d.]+ times as much with the map"
+)
+
+
 def test_the_simulator_benchmark_runs_and_ends_with_its_figures() -> None:
-    lines = printed("benchmarks/sim.py", "--runs", "2", "--memory-runs", "5")
+    # Five runs: one in each world, the aisle and its route without walls among them.
+    lines = printed("benchmarks/sim.py", "--runs", "5", "--memory-runs", "5")
     assert SIM_LINE.fullmatch(lines[-1])
-    assert "0 physics clients left connected" in lines[-2]
+    assert MAP_LINE.fullmatch(lines[-2])
+    assert "0 physics clients left connected" in lines[-3]
+    aisle = next(line for line in lines if line.startswith("aisle: "))
+    assert aisle.endswith("passed")  # down the aisle to its far end, clear of the racks
 
 
 NAV_LINE = re.compile(

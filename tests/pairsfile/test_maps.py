@@ -17,6 +17,7 @@ from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.inputs.node import SpecNode, read_root
 from pytest_lasertest.model.occupancy import FREE, OCCUPIED, UNKNOWN, OccupancyGrid
 from pytest_lasertest.pairsfile.maps import read_map
+from tests.helpers import WORLDS
 from tests.helpers.runs import Case
 from tests.helpers.texts import write
 
@@ -475,9 +476,6 @@ def test_a_map_the_pairs_file_cannot_name_is_an_error_at_the_pairs_files_line(
     with pytest.raises(SpecError) as raised:
         read_map(map_node(tmp_path, PAIRS.replace(case.old, case.new)))
     assert_error(raised.value, "gate.lasertest.yaml", case)
-
-
-WORLDS = Path(__file__).resolve().parents[1] / "data" / "worlds"
 
 
 @pytest.mark.parametrize(
