@@ -11,9 +11,10 @@ wheel speeds the run drove: the same physics, with no scans, no controller and n
 is the floor a run cannot beat. (Stepping wheels held at one speed instead costs PyBullet about
 15 % more, which would flatter the ratio.) Then many short runs in one process check that memory
 and physics clients are released. Every world is built in one physics client, reset for it, as
-the plugin does. A line then compares the aisle with its empty twin: the wall time per simulated
-second of each (medians), and their ratio. The last line reads `real-time factor: R; ratio to
-bare physics: Q` (medians over the worlds without walls, as before the aisle was added).
+the plugin does. A line then compares the aisle with its route without walls: the real-time
+factor of each (medians), and how many times as much a simulated second costs with the map. The
+last line reads `real-time factor: R; ratio to bare physics: Q` (medians over the first three
+worlds, as before the aisle was added).
 
     python benchmarks/sim.py [--runs 15] [--memory-runs 1000] [--controller move_base|nav2|reactive]
 """
@@ -62,15 +63,15 @@ class World:
     start: Pose2D = START
     route: tuple[Point2D, ...] = ROUTE
 
-    def scenario(self, controller_time: float) -> Scenario:
-        """The Husky with the paper's scanner, driving here for at most `controller_time` s."""
+    def scenario(self, time_limit: float) -> Scenario:
+        """The Husky with the paper's scanner, driving here for at most `time_limit` s."""
         return Scenario(
             PAPER.robot,
             SCANNER,
             self.obstacles,
             self.start,
             self.route,
-            controller_time,
+            time_limit,
             seed=0,
             walls=self.walls,
         )
@@ -112,11 +113,11 @@ def main() -> None:
         memory(args.memory_runs, controller, client)
     print(f"{connected_clients()} physics clients left connected")
     print(map_cost(measured))
-    walled = {WITH_MAP, WITHOUT_MAP}
-    unwalled = [run for name, runs in measured.items() if name not in walled for run in runs]
+    aisle = {WITH_MAP, WITHOUT_MAP}
+    first = [run for name, runs in measured.items() if name not in aisle for run in runs]
     print(
-        f"real-time factor: {statistics.median(f for f, _ in unwalled):.0f}; "
-        f"ratio to bare physics: {statistics.median(r for _, r in unwalled):.2f}"
+        f"real-time factor: {statistics.median(f for f, _ in first):.0f}; "
+        f"ratio to bare physics: {statistics.median(r for _, r in first):.2f}"
     )
 
 
