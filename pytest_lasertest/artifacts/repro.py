@@ -4,8 +4,8 @@ It is the user's own pairs file cut down to the failing case: the robot, world, 
 navigation sections and the pair's two scanners are copied as written (so `model:` overrides read
 as the user wrote them), and the placement is pinned. A scanner read from a robot description is
 written out as the profile it read: its file moves on, and its `ref:` (a branch) moves too.
-Paths to files beside the pairs file (the robot's, the world's `map:`) are rewritten to be found
-from wherever the repro is written.
+Paths to files beside the pairs file (the robot's, the world's `map:` and `sdf:`) are rewritten
+to be found from wherever the repro is written.
 Committed, the repro replays the failure as a regression test on every run.
 """
 
@@ -28,6 +28,8 @@ from pytest_lasertest.pairsfile.scanners import Scanner
 
 # Settings and constraints only steer the solver, which a pinned placement never asks.
 COPIED_SECTIONS = ("robot", "world", "controller", "navigation")
+# The world's fields that name files, relative to the pairs file.
+WORLD_FILES = ("map", "sdf")
 
 
 class _ReproDumper(yaml.SafeDumper):
@@ -157,11 +159,16 @@ def _robot_from(name: str, original: Path, destination: Path) -> str:
 
 
 def _world_from(world: object, original: Path, destination: Path) -> object:
-    """`world:` as written, its `map:` path, if relative, rewritten relative to where the repro
-    goes."""
-    if not isinstance(world, dict) or not isinstance(world.get("map"), str):
+    """`world:` as written, its `map:` and `sdf:` paths, if relative, rewritten relative to where
+    the repro goes."""
+    if not isinstance(world, dict):
         return world
-    return {**world, "map": _relocated(world["map"], original, destination)}
+    return {
+        key: _relocated(value, original, destination)
+        if key in WORLD_FILES and isinstance(value, str)
+        else value
+        for key, value in world.items()
+    }
 
 
 def _relocated(path: str, original: Path, destination: Path) -> str:

@@ -1,5 +1,6 @@
 """The `world:` of a pairs file: where the robot starts, where it must go, how long it has, and
-the walls it drives between (a `map:`, listed `walls:`, or both).
+the walls it drives between (a `map:`, listed `walls:`, the static models of an `sdf:` world,
+or any of them together).
 
 With walls, the robot's footprint must stand clear of them at the start and along every leg of
 the route; a world that gives only a goal has its route planned through the walls
@@ -27,9 +28,10 @@ from pytest_lasertest.nav.move_base.settings import (
 )
 from pytest_lasertest.nav.waypoints import CLEARANCE, plan_route
 from pytest_lasertest.pairsfile.maps import read_map
+from pytest_lasertest.pairsfile.sdf_world import read_sdf_walls
 from pytest_lasertest.pairsfile.walls import read_walls
 
-WORLD_KEYS = ("start", "goal", "route", "time_limit", "map", "walls")
+WORLD_KEYS = ("start", "goal", "route", "time_limit", "map", "walls", "sdf")
 # Closer than this, two waypoints are one: the robot cannot tell them apart.
 MIN_LEG = 1e-3  # m
 # Every run simulates the time limit in 20 ms physics steps, each with a scan and a command: an
@@ -114,8 +116,10 @@ def read_world(node: SpecNode, robot: Robot) -> World:
 
 
 def _walls(fields: dict[str, SpecNode]) -> Walls:
-    """The walls of the world's map and those it lists."""
+    """The walls of the world's map, those it lists and those of its SDF world."""
     listed = read_walls(fields["walls"]) if "walls" in fields else ()
+    if "sdf" in fields:
+        listed += read_sdf_walls(fields["sdf"])
     if "map" in fields:
         return Walls.mapped(read_map(fields["map"]), listed)
     return Walls.listed(listed)

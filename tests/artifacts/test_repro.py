@@ -400,3 +400,18 @@ def test_a_scanner_read_from_a_description_is_pinned_as_the_profile_it_read(
     assert replayed.baseline.profile == pair.baseline.profile
     assert replayed.candidate.profile == pair.candidate.profile
     assert replayed.candidate.profile.samples == 16
+
+
+def test_a_relative_sdf_world_path_is_rewritten_so_the_repro_finds_the_same_world_file(
+    tmp_path: Path,
+) -> None:
+    project = tmp_path / "project"
+    world_file = write(project / "worlds", "<sdf/>\n", "corridor.world")
+    path = write(project, VALID_PAIRS)
+    original = load_pairs_file(path)
+    text = path.read_text().replace("world:\n", "world:\n  sdf: worlds/corridor.world\n", 1)
+    path.write_text(text)
+    pair = pair_named(original, "same")
+    repro = tmp_path / "artifacts" / "gate" / "same.lasertest.yaml"
+    world = yaml.safe_load(repro_yaml(original, pair, pinned_for(pair), repro, ()))["world"]
+    assert (repro.parent / world["sdf"]).resolve() == world_file.resolve()

@@ -1,0 +1,185 @@
+"""The `sdf:` of a pairs file's world: the static models of an SDF world file (a Gazebo `.world`
+or `.sdf`), read as walls.
+
+    world: {sdf: worlds/office.world, start: ..., goal: ...}
+
+Every box collision of every static model is a wall: its pose composed from the model's `<pose>`
+(and those of the models it is nested in), its link's and its collision's, as SDFormat composes
+poses relative to their parents (sdformat's spec, http://sdformat.org/spec?elem=model, and
+Gazebo's building editor, which writes each wall as a static model's box link). A model is static
+when it or a model it is nested in says `<static>true</static>`. Models that are not static
+(robots, things that can be pushed) are not walls and are left out; so are planes (the ground)
+and the world's lights and plugins.
+
+The gate's walls are boxes standing on the ground. A static collision it cannot stand as one (a
+cylinder, a sphere, a mesh, a box tilted or floating above the ground), or a model it cannot
+read (an `<include>` of a model from Gazebo's model path other than the ground plane and the
+sun), is an error at that element's line: dropping it would let the robot drive through it.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from pytest_lasertest.descriptions.laser_block import Locate
+from pytest_lasertest.descriptions.mounts import sdf_pose
+from pytest_lasertest.descriptions.xmlfile import XmlElement, parse_xml
+from pytest_lasertest.inputs.errors import display_path
+from pytest_lasertest.inputs.files import (
+    MAX_FILE_BYTES,
+    FileKind,
+    UnreadableFile,
+    read_regular_file,
+)
+from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.model.obstacles import Box
+
+# Gazebo's own models that hold no wall: the ground and the light.
+NOT_WALLS = ("model://ground_plane", "model://sun")
+# A box tilted further than this is not a wall standing upright.
+LEVEL = 1e-6  # of the box's vertical axis's cosine
+# A box whose bottom lies further above the ground than this does not stand on it.
+GROUND = 0.01  # m
+SDF_WORLD = FileKind(
+    "an SDF world file",
+    MAX_FILE_BYTES,
+    "point `sdf:` at the world file itself",
+    "point `sdf:` at a Gazebo world file; one this large holds meshes or heightmaps inline, "
+    "which the gate does not read",
+)
+FIX_BOX = (
+    "the gate's walls are boxes standing upright on the ground: make it one in a copy of the "
+    "world, or list it under `walls:` and leave it out of the SDF file"
+)
+
+
+def read_sdf_walls(node: SpecNode) -> tuple[Box, ...]:
+    """The walls of the SDF world file `node` names, relative to the file `node` is written in."""
+    path = node.location.path.parent / node.text(
+        what="a path to an SDF world file",
+        fix="write the path of the world file relative to this file, e.g. worlds/office.world",
+    )
+    root, locate = _parse(path, node), _locator()
+    worlds = root.all("world")
+    if root.tag != "sdf" or not worlds:
+        raise locate(root).error(
+            "the file is not an SDF world: its root is no <sdf> holding a <world>",
+            "point `sdf:` at a Gazebo world file (.world or .sdf)",
+        )
+    walls = tuple(wall for world in worlds for wall in _world_walls(world, locate))
+    if not walls:
+        raise node.error(
+            f"{display_path(path)} holds no static model with a box collision: no wall",
+            "name the world whose static models are the walls, or leave `sdf:` out",
+        )
+    return walls
+
+
+def _parse(path: Path, node: SpecNode) -> XmlElement:
+    """The file's XML; a missing or unreadable file is an error at `node`."""
+    try:
+        data = read_regular_file(path, SDF_WORLD)
+    except FileNotFoundError:
+        raise node.error(
+            f"the SDF world file {display_path(path)} does not exist",
+            "give the path of a Gazebo world file (.world or .sdf) relative to this file",
+        ) from None
+    except UnreadableFile as error:
+        raise node.error(error.problem, error.fix) from None
+    return parse_xml(data, path)
+
+
+def _locator() -> Locate:
+    """Where to report an element: its own line in the world file."""
+
+    def locate(element: XmlElement) -> SpecNode:
+        return SpecNode(None, element.location, f"<{element.tag}>")
+
+    return locate
+
+
+def _world_walls(world: XmlElement, locate: Locate) -> list[Box]:
+    """The walls of one `<world>`: its static models' boxes; an unreadable include refused."""
+    for include in world.all("include"):
+        uri_element = include.child("uri")
+        uri = uri_element.text.strip().rstrip("/") if uri_element is not None else ""
+        if uri not in NOT_WALLS:
+            raise locate(include).error(
+                f"the world includes {uri or 'a model'!r}, which the gate cannot read: it does "
+                "not search Gazebo's model path",
+                "copy the model's static collision boxes into the world file, or list them "
+                "under `walls:`, and remove the <include>",
+            )
+    models = world.all("model")
+    return [box for model in models for box in _model_walls(model, Pose3D(), False, locate)]
+
+
+def _model_walls(model: XmlElement, parent: Pose3D, static: bool, locate: Locate) -> list[Box]:
+    """The boxes of a model and the models nested in it, `parent` the pose of its frame in the
+    world's, `static` whether a model it is nested in is static."""
+    static = static or _is_static(model)
+    pose = parent.then(sdf_pose(model.child("pose"), locate))
+    walls = [
+        _wall(collision, pose.then(sdf_pose(link.child("pose"), locate)), locate)
+        for link in model.all("link")
+        for collision in link.all("collision")
+        if static and not _is_plane(collision)
+    ]
+    for nested in model.all("model"):
+        walls += _model_walls(nested, pose, static, locate)
+    return walls
+
+
+def _is_static(model: XmlElement) -> bool:
+    flag = model.child("static")
+    return flag is not None and flag.text.strip().lower() in ("true", "1")
+
+
+def _is_plane(collision: XmlElement) -> bool:
+    geometry = collision.child("geometry")
+    return geometry is not None and geometry.child("plane") is not None
+
+
+def _wall(collision: XmlElement, link: Pose3D, locate: Locate) -> Box:
+    """A box collision of a link at pose `link` (in the world), as a wall standing on the
+    ground."""
+    geometry = collision.child("geometry")
+    box = geometry.child("box") if geometry is not None else None
+    if box is None:
+        shapes = [child.tag for child in geometry.children] if geometry is not None else []
+        raise locate(geometry if geometry is not None else collision).error(
+            f"a static {'<' + shapes[0] + '>' if shapes else 'collision without a geometry'} "
+            "is not a wall the gate can stand",
+            FIX_BOX,
+        )
+    length, width, depth = _size(box, locate)
+    pose = link.then(sdf_pose(collision.child("pose"), locate))
+    rotation = pose.rotation()
+    if abs(rotation[2, 2]) < 1.0 - LEVEL:
+        raise locate(collision).error("the box is tilted: it does not stand upright", FIX_BOX)
+    x, y, z = pose.xyz
+    bottom, top = z - depth / 2.0, z + depth / 2.0
+    if bottom > GROUND or top <= 0.0:
+        where = f"{bottom:.3f} m above" if bottom > GROUND else "below"
+        raise locate(collision).error(f"the box's bottom lies {where} the ground", FIX_BOX)
+    yaw = math.atan2(rotation[1, 0], rotation[0, 0])
+    return Box(float(x), float(y), yaw, length, width, float(top))
+
+
+def _size(box: XmlElement, locate: Locate) -> tuple[float, float, float]:
+    size = box.child("size")
+    words = size.text.split() if size is not None else []
+    try:
+        numbers = np.array([float(word) for word in words])
+    except ValueError:
+        numbers = np.array([])
+    if len(numbers) != 3 or not np.all(np.isfinite(numbers)) or np.any(numbers <= 0.0):
+        raise locate(size if size is not None else box).error(
+            f"a box's <size> holds {' '.join(words)!r}, not three lengths",
+            "write its length, width and height in m, e.g. <size>4 0.2 2.5</size>",
+        )
+    return float(numbers[0]), float(numbers[1]), float(numbers[2])
