@@ -8,8 +8,9 @@ Every box collision of every static model is a wall: its pose composed from the 
 poses relative to their parents (sdformat's spec, http://sdformat.org/spec?elem=model, and
 Gazebo's building editor, which writes each wall as a static model's box link). A model is static
 when it or a model it is nested in says `<static>true</static>`. Models that are not static
-(robots, things that can be pushed) are not walls and are left out; so are planes (the ground)
-and the world's lights and plugins.
+(robots, things that can be pushed) are not walls and are left out; so are planes and boxes no
+higher than GROUND (the ground, floors), the included ground plane and sun, and the world's
+lights and plugins.
 
 The gate's walls are boxes standing on the ground. A static collision it cannot stand as one (a
 cylinder, a sphere, a mesh, a box tilted or floating above the ground), or a model it cannot
@@ -37,12 +38,16 @@ from pytest_lasertest.inputs.files import (
 from pytest_lasertest.inputs.node import SpecNode
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.obstacles import Box
+from pytest_lasertest.pairsfile.walls import COORDINATE, EXTENT, HEIGHT, MAX_WALLS
 
-# Gazebo's own models that hold no wall: the ground and the light.
-NOT_WALLS = ("model://ground_plane", "model://sun")
+# Gazebo's own models that hold no wall, the ground and the light, by the last part of their URI
+# (`model://ground_plane`, or Fuel's `https://fuel.gazebosim.org/1.0/OpenRobotics/models/Ground
+# Plane`).
+NOT_WALLS = ("ground_plane", "sun")
 # A box tilted further than this is not a wall standing upright.
 LEVEL = 1e-6  # of the box's vertical axis's cosine
-# A box whose bottom lies further above the ground than this does not stand on it.
+# A box whose bottom lies further above the ground than this does not stand on it; one whose top
+# lies no higher is floor, not wall.
 GROUND = 0.01  # m
 SDF_WORLD = FileKind(
     "an SDF world file",
@@ -71,6 +76,12 @@ def read_sdf_walls(node: SpecNode) -> tuple[Box, ...]:
             "point `sdf:` at a Gazebo world file (.world or .sdf)",
         )
     walls = tuple(wall for world in worlds for wall in _world_walls(world, locate))
+    if len(walls) > MAX_WALLS:
+        raise node.error(
+            f"{display_path(path)} holds {len(walls)} static boxes, more than the {MAX_WALLS} "
+            "walls the simulator casts every scan against",
+            "merge walls that meet in a line into one box, or draw the building as a `map:`",
+        )
     if not walls:
         raise node.error(
             f"{display_path(path)} holds no static model with a box collision: no wall",
@@ -104,10 +115,10 @@ def _locator() -> Locate:
 
 def _world_walls(world: XmlElement, locate: Locate) -> list[Box]:
     """The walls of one `<world>`: its static models' boxes; an unreadable include refused."""
-    for include in world.all("include"):
+    for include in (element for element in world.walk() if element.tag == "include"):
         uri_element = include.child("uri")
         uri = uri_element.text.strip().rstrip("/") if uri_element is not None else ""
-        if uri not in NOT_WALLS:
+        if uri.rsplit("/", 1)[-1].lower().replace(" ", "_") not in NOT_WALLS:
             raise locate(include).error(
                 f"the world includes {uri or 'a model'!r}, which the gate cannot read: it does "
                 "not search Gazebo's model path",
@@ -115,7 +126,8 @@ def _world_walls(world: XmlElement, locate: Locate) -> list[Box]:
                 "under `walls:`, and remove the <include>",
             )
     models = world.all("model")
-    return [box for model in models for box in _model_walls(model, Pose3D(), False, locate)]
+    boxes = [box for model in models for box in _model_walls(model, Pose3D(), False, locate)]
+    return [box for box in boxes if box.height > GROUND]  # the rest is floor
 
 
 def _model_walls(model: XmlElement, parent: Pose3D, static: bool, locate: Locate) -> list[Box]:
@@ -161,13 +173,17 @@ def _wall(collision: XmlElement, link: Pose3D, locate: Locate) -> Box:
     rotation = pose.rotation()
     if abs(rotation[2, 2]) < 1.0 - LEVEL:
         raise locate(collision).error("the box is tilted: it does not stand upright", FIX_BOX)
-    x, y, z = pose.xyz
+    x, y, z = (float(value) for value in pose.xyz)
     bottom, top = z - depth / 2.0, z + depth / 2.0
-    if bottom > GROUND or top <= 0.0:
-        where = f"{bottom:.3f} m above" if bottom > GROUND else "below"
-        raise locate(collision).error(f"the box's bottom lies {where} the ground", FIX_BOX)
     yaw = math.atan2(rotation[1, 0], rotation[0, 0])
-    return Box(float(x), float(y), yaw, length, width, float(top))
+    if top <= GROUND:  # floor, which the caller leaves out
+        return Box(x, y, yaw, length, width, top)
+    where = locate(collision)
+    if bottom > GROUND:
+        raise where.error(f"the box's bottom lies {bottom:.3f} m above the ground", FIX_BOX)
+    for value, bounds in ((x, COORDINATE), (y, COORDINATE), (length, EXTENT), (width, EXTENT)):
+        bounds.check(where, value)
+    return Box(x, y, yaw, length, width, HEIGHT.check(where, top))
 
 
 def _size(box: XmlElement, locate: Locate) -> tuple[float, float, float]:

@@ -101,6 +101,50 @@ def test_the_ground_the_sun_and_a_model_that_is_not_static_are_no_walls(tmp_path
     assert all(not (math.isclose(wall.x, 4.0) and math.isclose(wall.y, 0.0)) for wall in walls)
 
 
+def test_a_static_floor_box_is_no_wall_and_fuels_ground_plane_is_included_as_gazebos(
+    tmp_path: Path,
+) -> None:
+    floor = """\
+    <model name="floor">
+      <static>true</static>
+      <link name="link">
+        <pose>0 0 -0.05 0 0 0</pose>
+        <collision name="collision"><geometry><box><size>40 40 0.1</size></box></geometry>
+        </collision>
+      </link>
+    </model>
+  </world>"""
+    fuel = "https://fuel.gazebosim.org/1.0/OpenRobotics/models/Ground Plane"
+    world = WORLD.replace("  </world>", floor).replace("model://ground_plane", fuel)
+
+    assert len(read_sdf_walls(sdf_node(tmp_path, world))) == 3
+
+
+def test_an_include_nested_in_a_model_is_refused_as_one_in_the_world_is(tmp_path: Path) -> None:
+    shelf = '<include><uri>model://shelf</uri></include>\n      <model name="post">'
+    nested = WORLD.replace('<model name="post">', shelf)
+    with pytest.raises(SpecError) as raised:
+        read_sdf_walls(sdf_node(tmp_path, nested))
+    assert raised.value.location.line == 21
+    assert "model://shelf" in raised.value.problem
+
+
+def test_more_static_boxes_than_the_simulator_casts_against_is_an_error_at_the_sdf_line(
+    tmp_path: Path,
+) -> None:
+    link = '<link name="l{i}"><pose>{i} 5 0.5 0 0 0</pose><collision name="c"><geometry>'
+    link += "<box><size>0.5 0.5 1</size></box></geometry></collision></link>"
+    many = "\n".join(link.format(i=i) for i in range(500))
+    world = WORLD.replace('<link name="wall_left">', many + '\n      <link name="wall_left">')
+    with pytest.raises(SpecError) as raised:
+        read_sdf_walls(sdf_node(tmp_path, world))
+    assert (raised.value.location.path.name, raised.value.location.line) == (
+        "gate.lasertest.yaml",
+        3,
+    )
+    assert "503 static boxes, more than the 500 walls" in raised.value.problem
+
+
 def test_a_pairs_file_with_an_sdf_world_drives_between_its_walls(tmp_path: Path) -> None:
     write(tmp_path / "worlds", WORLD, "corridor.world")
     spec = load_pairs_file(write(tmp_path, PAIRS))
