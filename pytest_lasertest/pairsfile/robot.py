@@ -1,4 +1,13 @@
-"""The `robot:` of a pairs file: a bundled robot by name, or a robot.yaml path."""
+"""The `robot:` of a pairs file: a bundled robot by name, a robot.yaml path, or a robot written in
+place around its own description, whose laser mount the description gives:
+
+    robot:
+      urdf: robots/mybot.urdf.xacro     # with ref:, args:, packages:, sensor: as a scanner's
+      body: {height: 0.3}
+      footprint: [[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]
+      max_linear_velocity: 0.8
+      ...                               # the robot file's other fields, but laser_mount
+"""
 
 from __future__ import annotations
 
@@ -10,6 +19,7 @@ from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import HUSKY_BODY, Body, Robot, pad_footprint
 from pytest_lasertest.model.scanner_limits import ProfileError, check_mount
 from pytest_lasertest.pairsfile.bundled import ROBOT_FILE, bundled_robots
+from pytest_lasertest.pairsfile.described import DESCRIPTION_KEYS, is_described, read_described
 from pytest_lasertest.pairsfile.nav2_params import read_nav2
 from pytest_lasertest.pairsfile.navigation import load_navigation_file
 
@@ -33,6 +43,9 @@ OPTIONAL_KEYS = (
     "nav2_version",
 )
 ROBOT_KEYS = REQUIRED_KEYS + OPTIONAL_KEYS
+# A robot written in place: its description's keys, and the robot file's but the mount, which the
+# description gives, and the name, which defaults to the laser's in the description.
+IN_PLACE_KEYS = DESCRIPTION_KEYS + ROBOT_KEYS
 # move_base's default controller_frequency is 20 Hz: a scan reaches the wheels one period later.
 DEFAULT_REACTION_TIME = 0.05  # s
 # Every bound is far beyond a real mobile robot's figure (the Husky's in brackets), so none is
@@ -104,7 +117,10 @@ MAX_CORNERS = 100  # costmap_2d footprints have 4 to a few dozen corners
 
 
 def read_robot(node: SpecNode) -> Robot:
-    """The robot a pairs file names, resolved against the bundled robots, then its directory."""
+    """The robot a pairs file names, resolved against the bundled robots, then its directory; or
+    the robot written in place around its description."""
+    if isinstance(node.value, dict):
+        return _read_in_place(node)
     return load_robot_file(resolve_robot(node))
 
 
@@ -112,17 +128,52 @@ def load_robot_file(path: Path) -> Robot:
     """A robot from its robot.yaml."""
     root = read_root(path, what="robot file", needs=", ".join(REQUIRED_KEYS))
     fields = root.mapping(ROBOT_KEYS, what="robot fields")
-    for key in REQUIRED_KEYS:
+    _require(root, fields, REQUIRED_KEYS, "a robot file")
+    return _robot(fields, fields["name"].text(), _mount(fields["laser_mount"]))
+
+
+def _read_in_place(node: SpecNode) -> Robot:
+    """A robot written in the pairs file, its laser mount read from its description."""
+    fields = node.mapping(IN_PLACE_KEYS, what="robot fields")
+    if not is_described(fields):
+        raise node.missing(
+            "urdf",
+            "a robot written in place reads its laser mount from its description: write "
+            "`urdf: FILE` (or `sdf: FILE`); or name a bundled robot or a robot.yaml",
+        )
+    if "laser_mount" in fields:
+        raise fields["laser_mount"].error(
+            "the laser mount of a robot written around its description is read from it",
+            "drop laser_mount, or drop urdf: and write the robot's fields in a robot.yaml",
+        )
+    needed = tuple(key for key in REQUIRED_KEYS if key not in ("name", "laser_mount"))
+    _require(node, fields, needed, "a robot written in place")
+    described = {key: fields.pop(key) for key in DESCRIPTION_KEYS if key in fields}
+    laser = read_described(node, described)
+    try:
+        check_mount(laser.profile.pose)
+    except ProfileError as error:
+        raise node.error(f"{laser.label}: {error.problem}", error.fix) from None
+    name = fields["name"].text() if "name" in fields else laser.label
+    return _robot(fields, name, laser.profile.pose)
+
+
+def _require(node: SpecNode, fields: dict[str, SpecNode], keys: tuple[str, ...], what: str) -> None:
+    for key in keys:
         if key not in fields:
-            fix = BODY_FIX if key == "body" else f"a robot file needs {', '.join(REQUIRED_KEYS)}"
-            raise root.missing(key, fix)
+            fix = BODY_FIX if key == "body" else f"{what} needs {', '.join(keys)}"
+            raise node.missing(key, fix)
+
+
+def _robot(fields: dict[str, SpecNode], name: str, mount: Pose3D) -> Robot:
+    """The robot the robot file's fields describe, named `name`, its laser at `mount`."""
     top_speed = fields["max_linear_velocity"].number_in(SPEED)
     top_turn_rate = fields["max_angular_velocity"].number_in(TURN_RATE)
     padding = _optional(fields, "footprint_padding", PADDING, 0.0)
     footprint = _footprint(fields["footprint"])
     robot = Robot(
-        name=fields["name"].text(),
-        laser_mount=_mount(fields["laser_mount"]),
+        name=name,
+        laser_mount=mount,
         footprint=pad_footprint(footprint, padding),
         max_linear_velocity=top_speed,
         max_linear_acceleration=fields["max_linear_acceleration"].number_in(ACCELERATION),

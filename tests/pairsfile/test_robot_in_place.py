@@ -1,0 +1,128 @@
+"""A robot written in place around its own description (`robot: {urdf: ..., ...}`): the laser
+mount comes from the description, the values a description does not hold from the pairs file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.model.robot import Body
+from pytest_lasertest.pairsfile import PairsFile, load_pairs_file
+from tests.helpers.runs import Case
+from tests.helpers.texts import ROBOT, write
+
+# Line numbers matter: the cases below break one line of it.
+PAIRS = """\
+robot:
+  urdf: robot.urdf
+  body: {height: 0.3}
+  footprint: [[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]
+  max_linear_velocity: 0.8
+  max_linear_acceleration: 1.5
+  max_angular_velocity: 1.2
+  max_angular_acceleration: 3.0
+world: {start: {x: 0, y: 0}, goal: {x: 6, y: 0}, time_limit: 30}
+pairs:
+  swap:
+    baseline: {model: clearpath_lms1xx_gazebo}
+    candidate: {model: clearpath_lms1xx_gazebo, samples: 180}
+"""
+# ROBOT's laser: base_link 0.1 m above base_footprint, the laser 0.3 m ahead and 0.2 m above it.
+MOUNT = Pose3D(xyz=(0.3, 0.0, 0.3), rpy=(0.0, 0.0, 0.0))
+
+
+def load(tmp_path: Path, pairs: str = PAIRS, robot: str = ROBOT) -> PairsFile:
+    write(tmp_path, robot, "robot.urdf")
+    return load_pairs_file(write(tmp_path, pairs))
+
+
+def test_the_laser_mount_is_read_from_the_description_and_the_rest_from_the_pairs_file(
+    tmp_path: Path,
+) -> None:
+    robot = load(tmp_path).robot
+    assert robot.laser_mount.xyz == pytest.approx(MOUNT.xyz)
+    assert robot.laser_mount.rpy == pytest.approx(MOUNT.rpy)
+    assert robot.name == "front in robot.urdf"
+    assert robot.max_linear_velocity == 0.8
+    assert robot.body == Body("prism", robot.body.outline, 0.3)
+
+
+def test_a_catalogue_scanner_without_a_pose_stands_where_the_description_mounts_the_laser(
+    tmp_path: Path,
+) -> None:
+    spec = load(tmp_path)
+    for pair in spec.pairs:
+        assert pair.baseline.profile.pose.xyz == pytest.approx(MOUNT.xyz)
+        assert pair.candidate.profile.pose.xyz == pytest.approx(MOUNT.xyz)
+
+
+def test_a_moved_laser_in_the_description_moves_the_robots_mount(tmp_path: Path) -> None:
+    moved = ROBOT.replace('<origin xyz="0.3 0 0.2" rpy="0 0 0"/>', '<origin xyz="0.1 0 0.4"/>')
+    spec = load(tmp_path, robot=moved)
+    assert spec.robot.laser_mount.xyz == pytest.approx((0.1, 0.0, 0.5))
+
+
+def test_a_name_written_in_place_names_the_robot(tmp_path: Path) -> None:
+    spec = load(tmp_path, PAIRS.replace("  urdf: robot.urdf\n", "  urdf: robot.urdf\n  name: R1\n"))
+    assert spec.robot.name == "R1"
+
+
+CASES = {
+    "a mount written beside the description": Case(
+        "  body: {height: 0.3}\n",
+        "  body: {height: 0.3}\n  laser_mount: {xyz: [0, 0, 0.3], rpy: [0, 0, 0]}\n",
+        4,
+        "robot.laser_mount",
+        "the laser mount of a robot written around its description is read from it",
+        "drop laser_mount",
+    ),
+    "no description": Case(
+        "  urdf: robot.urdf\n",
+        "",
+        1,
+        "robot.urdf",
+        "missing",
+        "reads its laser mount from its description",
+    ),
+    "no body": Case(
+        "  body: {height: 0.3}\n",
+        "",
+        1,
+        "robot.body",
+        "missing",
+        "write `body: husky`",
+    ),
+    "a description that does not exist": Case(
+        "urdf: robot.urdf",
+        "urdf: robots/mybot.urdf",
+        1,  # of the file not found, as for a scanner's description; the problem names line 2
+        "",
+        "robots/mybot.urdf does not exist (read for robot.urdf at gate.lasertest.yaml:2)",
+        "check the path",
+    ),
+    "a misspelt field": Case(
+        "  max_linear_velocity: 0.8\n",
+        "  max_linear_velocity: 0.8\n  max_linear_velocty: 0.8\n",
+        6,
+        "robot.max_linear_velocty",
+        "unknown",
+        "max_linear_velocity",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", CASES.values(), ids=CASES.keys())
+def test_a_robot_written_in_place_that_cannot_be_read_is_one_error_at_its_line(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, case: Case
+) -> None:
+    monkeypatch.chdir(tmp_path)  # paths in messages are shown relative to the working directory
+    assert case.old in PAIRS
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, PAIRS.replace(case.old, case.new, 1))
+    error = raised.value
+    assert (error.location.line, error.field) == (case.line, case.field)
+    assert case.problem in error.problem
+    assert case.fix in error.fix
