@@ -43,8 +43,9 @@ OPTIONAL_KEYS = (
     "nav2_version",
 )
 ROBOT_KEYS = REQUIRED_KEYS + OPTIONAL_KEYS
-# A robot written in place: its description's keys, and the robot file's but the mount, which the
-# description gives, and the name, which defaults to the laser's in the description.
+# A robot written in place: its description's keys and the robot file's. The description gives the
+# mount (`laser_mount` is read only to refuse it with the reason) and, unless `name` is written,
+# the name.
 IN_PLACE_KEYS = DESCRIPTION_KEYS + ROBOT_KEYS
 # move_base's default controller_frequency is 20 Hz: a scan reaches the wheels one period later.
 DEFAULT_REACTION_TIME = 0.05  # s
@@ -149,11 +150,8 @@ def _read_in_place(node: SpecNode) -> Robot:
     needed = tuple(key for key in REQUIRED_KEYS if key not in ("name", "laser_mount"))
     _require(node, fields, needed, "a robot written in place")
     described = {key: fields.pop(key) for key in DESCRIPTION_KEYS if key in fields}
+    # A profile's mount is checked as it is made (level scan plane): it serves as the robot's.
     laser = read_described(node, described)
-    try:
-        check_mount(laser.profile.pose)
-    except ProfileError as error:
-        raise node.error(f"{laser.label}: {error.problem}", error.fix) from None
     name = fields["name"].text() if "name" in fields else laser.label
     return _robot(fields, name, laser.profile.pose)
 

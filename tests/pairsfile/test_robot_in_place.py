@@ -11,6 +11,7 @@ from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import Body
 from pytest_lasertest.pairsfile import PairsFile, load_pairs_file
+from tests.helpers.git import commit_everything
 from tests.helpers.runs import Case
 from tests.helpers.texts import ROBOT, write
 
@@ -63,6 +64,18 @@ def test_a_moved_laser_in_the_description_moves_the_robots_mount(tmp_path: Path)
     moved = ROBOT.replace('<origin xyz="0.3 0 0.2" rpy="0 0 0"/>', '<origin xyz="0.1 0 0.4"/>')
     spec = load(tmp_path, robot=moved)
     assert spec.robot.laser_mount.xyz == pytest.approx((0.1, 0.0, 0.5))
+
+
+def test_at_a_git_ref_the_mount_is_the_committed_descriptions(tmp_path: Path) -> None:
+    load(tmp_path)  # writes robot.urdf and the pairs file
+    commit_everything(tmp_path)
+    moved = ROBOT.replace('<origin xyz="0.3 0 0.2" rpy="0 0 0"/>', '<origin xyz="0.1 0 0.4"/>')
+    at_head = PAIRS.replace("  urdf: robot.urdf\n", "  urdf: robot.urdf\n  ref: HEAD\n")
+
+    spec = load(tmp_path, at_head, robot=moved)
+
+    assert spec.robot.laser_mount.xyz == pytest.approx(MOUNT.xyz)
+    assert "at HEAD" in spec.robot.name
 
 
 def test_a_name_written_in_place_names_the_robot(tmp_path: Path) -> None:
