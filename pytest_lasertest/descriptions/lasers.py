@@ -9,11 +9,13 @@ far as the files show (`absent.py`).
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from pytest_lasertest.descriptions.absent import no_laser_error
+from pytest_lasertest.descriptions.collisions import collision_top
 from pytest_lasertest.descriptions.laser_block import (
     Locate,
     check_planar,
@@ -86,6 +88,17 @@ class Laser:
                 'attach it to the laser\'s link: <gazebo reference="LINK">',
             )
         return urdf_mount(found.models[0], found.link, found.sensor, locate)
+
+    def collision_top(self) -> float | None:
+        """How high (m) the collision geometry of the robot carrying it reaches above its base
+        frame (`collisions.py`); None for an SDF model, or where that height is not known."""
+        if self._found.link_element is not None:
+            return None
+
+        def locate(element: XmlElement) -> SpecNode:  # named for itself, not for the laser
+            return dataclasses.replace(self._locate(element), field=f"<{element.tag}>")
+
+        return collision_top(self._found.models[0], self.mount().base, locate)
 
 
 def read_lasers(description: DescriptionFile) -> tuple[Laser, ...]:

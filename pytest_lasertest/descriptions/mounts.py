@@ -42,14 +42,28 @@ def urdf_mount(robot: XmlElement, link: str, sensor: XmlElement, locate: Locate)
     joints = _joints(robot, links, locate)
     up_from_link = _chain(link, joints, locate)
     base = FOOTPRINT if FOOTPRINT in links else _root(link, up_from_link)
-    up_from_base = _chain(base, joints, locate)
-    if _root(base, up_from_base) != _root(link, up_from_link):
+    in_base = link_poses(robot, base, locate).get(link)
+    if in_base is None:
         raise locate(sensor).error(
             f"no joint chain joins the sensor's link {link!r} to {base!r}",
             "join the laser's link to the robot with joints",
         )
-    in_base = _in_root(up_from_base).inverse().then(_in_root(up_from_link))
     return Mount(in_base.then(sdf_pose(sensor.child("pose"), locate)), base)
+
+
+def link_poses(robot: XmlElement, base: str, locate: Locate) -> dict[str, Pose3D]:
+    """The pose in `base`'s frame of every link of a URDF `<robot>` that a joint chain joins to
+    it, every joint at its zero position."""
+    links = {element.get("name") for element in robot.all("link")}
+    joints = _joints(robot, links, locate)
+    up_from_base = _chain(base, joints, locate)
+    root, in_root = _root(base, up_from_base), _in_root(up_from_base).inverse()
+    poses = {}
+    for link in (name for name in links if name is not None):
+        up_from_link = _chain(link, joints, locate)
+        if _root(link, up_from_link) == root:
+            poses[link] = in_root.then(_in_root(up_from_link))
+    return poses
 
 
 @dataclass(frozen=True)
@@ -76,7 +90,7 @@ def _joints(robot: XmlElement, links: set[str | None], locate: Locate) -> dict[s
                 f"{locate(first).location.line}) and {joint.get('name')!r}",
                 "a URDF is a tree: give every link one parent joint, and remove the other",
             )
-        joints[child] = _Joint(parent, _origin(joint, locate), joint)
+        joints[child] = _Joint(parent, urdf_origin(joint, locate), joint)
     return joints
 
 
@@ -100,8 +114,10 @@ def _link_of(joint: XmlElement, end: str, links: set[str | None], locate: Locate
     return link
 
 
-def _origin(joint: XmlElement, locate: Locate) -> Pose3D:
-    origin = joint.child("origin")
+def urdf_origin(element: XmlElement, locate: Locate) -> Pose3D:
+    """The `<origin xyz rpy>` of a URDF joint, collision or visual: where it sits in its
+    parent's frame."""
+    origin = element.child("origin")
     if origin is None:
         return Pose3D()
     xyz = _numbers(origin, origin.get("xyz") or "0 0 0", 3, locate)

@@ -10,7 +10,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from pytest_lasertest.descriptions.gitref import GitError
-from pytest_lasertest.descriptions.lasers import DescriptionFile, choose_laser, read_lasers
+from pytest_lasertest.descriptions.lasers import (
+    DescriptionFile,
+    Laser,
+    choose_laser,
+    read_lasers,
+)
 from pytest_lasertest.descriptions.profile import laser_profile
 from pytest_lasertest.descriptions.readers import AtRevision, WorkingTree, reader_at
 from pytest_lasertest.descriptions.xacro_expand import FileReader
@@ -27,6 +32,7 @@ class DescribedLaser:
 
     profile: LaserProfile
     label: str  # "front_laser in robots/r.urdf.xacro at origin/main (1a2b3c4)"
+    laser: Laser  # as the description has it: its robot's geometry is read from it on demand
 
 
 def is_described(fields: Mapping[str, SpecNode]) -> bool:
@@ -60,7 +66,7 @@ def read_described(node: SpecNode, fields: dict[str, SpecNode]) -> DescribedLase
         raise _in_context(error, file_node) from None
     # Named as the pairs file writes it, which reads the same from any working directory.
     revision = f" at {reader.revision.label}" if isinstance(reader, AtRevision) else ""
-    return DescribedLaser(profile, f"{laser.name} in {file_node.value}{revision}")
+    return DescribedLaser(profile, f"{laser.name} in {file_node.value}{revision}", laser)
 
 
 def _file_node(node: SpecNode, fields: dict[str, SpecNode]) -> SpecNode:

@@ -3,7 +3,7 @@ place around its own description, whose laser mount the description gives:
 
     robot:
       urdf: robots/mybot.urdf.xacro     # with ref:, args:, packages:, sensor: as a scanner's
-      body: {height: 0.3}
+      body: {height: 0.3}               # optional: as high as its collision geometry
       footprint: [[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]
       max_linear_velocity: 0.8
       ...                               # the robot file's other fields, but laser_mount
@@ -19,7 +19,12 @@ from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import HUSKY_BODY, Body, Robot, pad_footprint
 from pytest_lasertest.model.scanner_limits import ProfileError, check_mount
 from pytest_lasertest.pairsfile.bundled import ROBOT_FILE, bundled_robots
-from pytest_lasertest.pairsfile.described import DESCRIPTION_KEYS, is_described, read_described
+from pytest_lasertest.pairsfile.described import (
+    DESCRIPTION_KEYS,
+    DescribedLaser,
+    is_described,
+    read_described,
+)
 from pytest_lasertest.pairsfile.nav2_params import read_nav2
 from pytest_lasertest.pairsfile.navigation import load_navigation_file
 
@@ -147,13 +152,27 @@ def _read_in_place(node: SpecNode) -> Robot:
             "the laser mount of a robot written around its description is read from it",
             "drop laser_mount, or drop urdf: and write the robot's fields in a robot.yaml",
         )
-    needed = tuple(key for key in REQUIRED_KEYS if key not in ("name", "laser_mount"))
+    needed = tuple(key for key in REQUIRED_KEYS if key not in ("name", "laser_mount", "body"))
     _require(node, fields, needed, "a robot written in place")
     described = {key: fields.pop(key) for key in DESCRIPTION_KEYS if key in fields}
+    file_node = described.get("urdf", described.get("sdf", node))
     # A profile's mount is checked as it is made (level scan plane): it serves as the robot's.
     laser = read_described(node, described)
     name = fields["name"].text() if "name" in fields else laser.label
-    return _robot(fields, name, laser.profile.pose)
+    height = None if "body" in fields else _described_height(node, file_node, laser)
+    return _robot(fields, name, laser.profile.pose, height)
+
+
+def _described_height(node: SpecNode, file_node: SpecNode, laser: DescribedLaser) -> float:
+    """How high the description's collision geometry reaches: the prism's height."""
+    top = laser.laser.collision_top()
+    if top is None:
+        raise node.missing(
+            "body",
+            "the description's collision geometry gives no height (it holds a mesh, or no "
+            f"collision, or it is SDF): {BODY_FIX}",
+        )
+    return BODY_HEIGHT.check(file_node, top)
 
 
 def _require(node: SpecNode, fields: dict[str, SpecNode], keys: tuple[str, ...], what: str) -> None:
@@ -163,12 +182,16 @@ def _require(node: SpecNode, fields: dict[str, SpecNode], keys: tuple[str, ...],
             raise node.missing(key, fix)
 
 
-def _robot(fields: dict[str, SpecNode], name: str, mount: Pose3D) -> Robot:
-    """The robot the robot file's fields describe, named `name`, its laser at `mount`."""
+def _robot(
+    fields: dict[str, SpecNode], name: str, mount: Pose3D, height: float | None = None
+) -> Robot:
+    """The robot the robot file's fields describe, named `name`, its laser at `mount`; without
+    a `body` field, a prism of its footprint `height` m high."""
     top_speed = fields["max_linear_velocity"].number_in(SPEED)
     top_turn_rate = fields["max_angular_velocity"].number_in(TURN_RATE)
     padding = _optional(fields, "footprint_padding", PADDING, 0.0)
     footprint = _footprint(fields["footprint"])
+    body = _body(fields["body"], footprint) if height is None else Body("prism", footprint, height)
     robot = Robot(
         name=name,
         laser_mount=mount,
@@ -181,7 +204,7 @@ def _robot(fields: dict[str, SpecNode], name: str, mount: Pose3D) -> Robot:
         nominal_turn_rate=_nominal(fields, "nominal_turn_rate", NOMINAL_TURN_RATE, top_turn_rate),
         reaction_time=_optional(fields, "reaction_time", REACTION_TIME, DEFAULT_REACTION_TIME),
         navigation=load_navigation_file(fields["navigation"]) if "navigation" in fields else (),
-        body=_body(fields["body"], footprint),
+        body=body,
     )
     return read_nav2(fields, robot)
 

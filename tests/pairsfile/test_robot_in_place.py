@@ -83,6 +83,78 @@ def test_a_name_written_in_place_names_the_robot(tmp_path: Path) -> None:
     assert spec.robot.name == "R1"
 
 
+# ROBOT with collision geometry: a 0.2 m high chassis box whose top is 0.3 m up, wheels
+# (cylinders turned onto their sides, 0.2 m across) and the laser's 5 cm box, topping out at
+# 0.3 + 0.025 m.
+COLLIDING = ROBOT.replace(
+    '<link name="base_link"/>',
+    """<link name="base_link">
+    <collision>
+      <origin xyz="0 0 0.1"/>
+      <geometry><box size="0.6 0.4 0.2"/></geometry>
+    </collision>
+  </link>
+  <link name="wheel">
+    <collision>
+      <origin rpy="1.5708 0 0"/>
+      <geometry><cylinder radius="0.1" length="0.05"/></geometry>
+    </collision>
+  </link>
+  <joint name="wheel_joint" type="continuous">
+    <parent link="base_link"/>
+    <child link="wheel"/>
+    <origin xyz="0 0.22 0"/>
+  </joint>""",
+).replace(
+    '<link name="laser"/>',
+    """<link name="laser">
+    <collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision>
+  </link>""",
+)
+WITHOUT_BODY = PAIRS.replace("  body: {height: 0.3}\n", "")
+
+
+def test_without_a_body_the_prism_is_as_high_as_the_descriptions_collision_geometry(
+    tmp_path: Path,
+) -> None:
+    robot = load(tmp_path, WITHOUT_BODY, COLLIDING).robot
+    assert robot.body.kind == "prism"
+    assert robot.body.height == pytest.approx(0.325)
+    assert robot.body.outline == ((-0.3, -0.2), (0.3, -0.2), (0.3, 0.2), (-0.3, 0.2))
+
+
+def test_a_wheel_on_its_side_reaches_up_by_its_radius_and_a_tall_one_by_half_its_length(
+    tmp_path: Path,
+) -> None:
+    tall = COLLIDING.replace('<box size="0.6 0.4 0.2"/>', '<box size="0.6 0.4 0.01"/>').replace(
+        '<box size="0.05 0.05 0.05"/>', '<box size="0.01 0.01 0.01"/>'
+    )
+    on_its_side = load(tmp_path, WITHOUT_BODY, tall).robot.body.height
+    upright = load(tmp_path, WITHOUT_BODY, tall.replace('rpy="1.5708 0 0"', 'rpy="0 0 0"'))
+    # The laser's 1 cm box tops out at 0.305 m; the wheel's centre is 0.1 m up.
+    assert on_its_side == pytest.approx(0.305)
+    assert upright.robot.body.height == pytest.approx(0.305)
+    higher = tall.replace('length="0.05"', 'length="0.6"').replace('rpy="1.5708 0 0"', "")
+    assert load(tmp_path, WITHOUT_BODY, higher).robot.body.height == pytest.approx(0.4)
+
+
+def test_a_collision_mesh_gives_no_height_and_the_body_must_be_written(tmp_path: Path) -> None:
+    meshed = COLLIDING.replace('<box size="0.6 0.4 0.2"/>', '<mesh filename="base.stl"/>')
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, WITHOUT_BODY, meshed)
+    assert (raised.value.location.line, raised.value.field) == (1, "robot.body")
+    assert "gives no height (it holds a mesh" in raised.value.fix
+
+
+def test_a_box_of_two_lengths_is_an_error_at_its_line_in_the_description(tmp_path: Path) -> None:
+    broken = COLLIDING.replace('<box size="0.6 0.4 0.2"/>', '<box size="0.6 0.4"/>')
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, WITHOUT_BODY, broken)
+    assert raised.value.location.path.name == "robot.urdf"
+    assert (raised.value.location.line, raised.value.field) == (7, "<box>")
+    assert '<box size="0.6 0.4"> is not 3 positive lengths' in raised.value.problem
+
+
 CASES = {
     "a mount written beside the description": Case(
         "  body: {height: 0.3}\n",

@@ -15,6 +15,7 @@ from pytest_lasertest.inputs.node import SpecNode, read_root
 from pytest_lasertest.model.obstacles import Box
 from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.pairsfile.sdf_world import read_sdf_walls
+from tests.helpers import DATA
 from tests.helpers.runs import Case
 from tests.helpers.texts import write
 
@@ -297,3 +298,16 @@ def test_an_sdf_world_the_pairs_file_cannot_use_is_an_error_at_the_pairs_files_l
     with pytest.raises(SpecError) as raised:
         read_sdf_walls(sdf_node(tmp_path, pairs=PAIRS.replace(case.old, case.new)))
     assert_error(raised.value, "gate.lasertest.yaml", case)
+
+
+def test_gz_sims_example_world_is_refused_at_its_floating_lidar_box_not_at_its_movable_cube(
+    tmp_path: Path,
+) -> None:
+    # A real world (gz-sim's examples/worlds/export_occupancy_grid.sdf, in the description
+    # corpus): a static model carrying a lidar on a 0.1 m box half a metre up, a movable cube and
+    # a ground plane. The box is no wall standing on the ground.
+    world = (DATA / "corpus/gz-sim/main/examples/worlds/export_occupancy_grid.sdf").read_text()
+    with pytest.raises(SpecError) as raised:
+        read_sdf_walls(sdf_node(tmp_path, world))
+    assert (raised.value.location.line, raised.value.field) == (67, "<collision>")
+    assert raised.value.problem == "the box's bottom lies 0.450 m above the ground"
