@@ -54,12 +54,12 @@ def urdf_mount(robot: XmlElement, link: str, sensor: XmlElement, locate: Locate)
 def link_poses(robot: XmlElement, base: str, locate: Locate) -> dict[str, Pose3D]:
     """The pose in `base`'s frame of every link of a URDF `<robot>` that a joint chain joins to
     it, every joint at its zero position."""
-    links = {element.get("name") for element in robot.all("link")}
-    joints = _joints(robot, links, locate)
+    names = [element.get("name") for element in robot.all("link")]
+    joints = _joints(robot, set(names), locate)
     up_from_base = _chain(base, joints, locate)
     root, in_root = _root(base, up_from_base), _in_root(up_from_base).inverse()
     poses = {}
-    for link in (name for name in links if name is not None):
+    for link in (name for name in names if name is not None):  # in document order
         up_from_link = _chain(link, joints, locate)
         if _root(link, up_from_link) == root:
             poses[link] = in_root.then(_in_root(up_from_link))
