@@ -22,14 +22,16 @@ from pytest_lasertest.artifacts.files import write_text
 from pytest_lasertest.inputs.errors import Location, SpecError, display_path
 from pytest_lasertest.inputs.yamlfile import read_text
 from pytest_lasertest.pairsfile.bundled import bundled_robots
+from pytest_lasertest.pairsfile.described import DESCRIPTION_KEYS
 from pytest_lasertest.pairsfile.pairs import Pair, PairsFile
 from pytest_lasertest.pairsfile.placements import PinnedPlacement, obstacle_fields
 from pytest_lasertest.pairsfile.scanners import Scanner
 
 # Settings and constraints only steer the solver, which a pinned placement never asks.
 COPIED_SECTIONS = ("robot", "world", "controller", "navigation")
-# The world's fields that name files, relative to the pairs file.
+# The world's fields that name files, relative to the pairs file; and a robot's written in place.
 WORLD_FILES = ("map", "sdf")
+ROBOT_FILES = ("navigation", "nav2")
 
 
 class _ReproDumper(yaml.SafeDumper):
@@ -51,13 +53,19 @@ def repro_yaml(
     its own from `destination`."""
     written = _written(spec)
     document = {key: written[key] for key in COPIED_SECTIONS if key in written}
-    document["robot"] = _robot_from(str(written["robot"]), spec.path, destination)
+    robot = written["robot"]
+    document["robot"] = (
+        _robot_in_place(robot, spec, destination)
+        if isinstance(robot, dict)
+        else _robot_from(str(robot), spec.path, destination)
+    )
     if "world" in document:
         document["world"] = _world_from(document["world"], spec.path, destination)
     document["pairs"] = {pair.name: _pair_mapping(written, pair, pinned)}
     notes = [
         *header,
         *_described_notes(pair),
+        *_robot_notes(robot),
         *_controller_notes(written.get("controller"), spec.path, destination),
     ]
     body = yaml.dump(
@@ -158,6 +166,25 @@ def _robot_from(name: str, original: Path, destination: Path) -> str:
     return f"./{relative}" if relative in bundled_robots() else relative
 
 
+def _robot_in_place(written: dict[str, object], spec: PairsFile, destination: Path) -> object:
+    """A robot written in place, as written, its files' paths rewritten relative to where the
+    repro goes; read around a description, with the mount (and name and body) it read pinned
+    in place of the description, which moves on as a scanner's does."""
+    robot, original = spec.robot, spec.path
+    kept = {key: value for key, value in written.items() if key not in DESCRIPTION_KEYS}
+    for key in ROBOT_FILES:
+        if isinstance(kept.get(key), str):
+            kept[key] = _relocated(str(kept[key]), original, destination)
+    if len(kept) == len(written):
+        return kept
+    # Written in full (YAML round-trips a float's repr), so that the replay is the same robot.
+    mount = robot.laser_mount
+    kept.setdefault("name", robot.name)
+    kept["laser_mount"] = {"xyz": [*map(float, mount.xyz)], "rpy": [*map(float, mount.rpy)]}
+    kept.setdefault("body", {"height": float(robot.body.height)})
+    return kept
+
+
 def _world_from(world: object, original: Path, destination: Path) -> object:
     """`world:` as written, its `map:` and `sdf:` paths, if relative, rewritten relative to where
     the repro goes."""
@@ -179,6 +206,14 @@ def _relocated(path: str, original: Path, destination: Path) -> str:
         return path
     target = original.parent.resolve() / path
     return Path(os.path.relpath(target, destination.parent.resolve())).as_posix()
+
+
+def _robot_notes(written: object) -> list[str]:
+    """Where a robot written around its description came from."""
+    if not isinstance(written, dict) or not any(key in written for key in DESCRIPTION_KEYS):
+        return []
+    source = written.get("urdf", written.get("sdf"))
+    return [f"robot: its laser mount and body as read from {source}, pinned as read"]
 
 
 def _described_notes(pair: Pair) -> list[str]:

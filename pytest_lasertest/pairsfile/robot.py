@@ -1,5 +1,6 @@
 """The `robot:` of a pairs file: a bundled robot by name, a robot.yaml path, or a robot written in
-place around its own description, whose laser mount the description gives:
+place: a robot file's fields, where `urdf:` may stand for `laser_mount:` and the description then
+gives the mount:
 
     robot:
       urdf: robots/mybot.urdf.xacro     # with ref:, args:, packages:, sensor: as a scanner's
@@ -48,9 +49,8 @@ OPTIONAL_KEYS = (
     "nav2_version",
 )
 ROBOT_KEYS = REQUIRED_KEYS + OPTIONAL_KEYS
-# A robot written in place: its description's keys and the robot file's. The description gives the
-# mount (`laser_mount` is read only to refuse it with the reason) and, unless `name` is written,
-# the name.
+# A robot written in place: the robot file's keys, and its description's, which stand for
+# `laser_mount` (the description then gives the mount and, unless `name` is written, the name).
 IN_PLACE_KEYS = DESCRIPTION_KEYS + ROBOT_KEYS
 # move_base's default controller_frequency is 20 Hz: a scan reaches the wheels one period later.
 DEFAULT_REACTION_TIME = 0.05  # s
@@ -139,18 +139,23 @@ def load_robot_file(path: Path) -> Robot:
 
 
 def _read_in_place(node: SpecNode) -> Robot:
-    """A robot written in the pairs file, its laser mount read from its description."""
+    """A robot written in the pairs file: its laser mount read from its description, or
+    written as a robot file writes it (as a repro pins a mount it read)."""
     fields = node.mapping(IN_PLACE_KEYS, what="robot fields")
     if not is_described(fields):
-        raise node.missing(
-            "urdf",
-            "a robot written in place reads its laser mount from its description: write "
-            "`urdf: FILE` (or `sdf: FILE`); or name a bundled robot or a robot.yaml",
-        )
+        if "laser_mount" not in fields:
+            raise node.missing(
+                "urdf",
+                "write `urdf: FILE` (or `sdf: FILE`) to read the laser mount from the robot's "
+                "description, or `laser_mount: {xyz: [...], rpy: [...]}`; or name a bundled "
+                "robot or a robot.yaml",
+            )
+        _require(node, fields, REQUIRED_KEYS, "a robot written in place")
+        return _robot(fields, fields["name"].text(), _mount(fields["laser_mount"]))
     if "laser_mount" in fields:
         raise fields["laser_mount"].error(
             "the laser mount of a robot written around its description is read from it",
-            "drop laser_mount, or drop urdf: and write the robot's fields in a robot.yaml",
+            "drop laser_mount, or drop urdf: and write the mount yourself",
         )
     needed = tuple(key for key in REQUIRED_KEYS if key not in ("name", "laser_mount", "body"))
     _require(node, fields, needed, "a robot written in place")

@@ -415,3 +415,30 @@ def test_a_relative_sdf_world_path_is_rewritten_so_the_repro_finds_the_same_worl
     repro = tmp_path / "artifacts" / "gate" / "same.lasertest.yaml"
     world = yaml.safe_load(repro_yaml(original, pair, pinned_for(pair), repro, ()))["world"]
     assert (repro.parent / world["sdf"]).resolve() == world_file.resolve()
+
+
+def test_a_robot_written_around_its_description_replays_with_the_mount_it_read(
+    tmp_path: Path,
+) -> None:
+    project = tmp_path / "project"
+    write(project, ROBOT, "robot.urdf")
+    in_place = (
+        "robot:\n"
+        "  urdf: robot.urdf\n"
+        "  body: {height: 0.3}\n"
+        "  footprint: [[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]\n"
+        "  max_linear_velocity: 0.8\n"
+        "  max_linear_acceleration: 1.5\n"
+        "  max_angular_velocity: 1.2\n"
+        "  max_angular_acceleration: 3.0\n"
+    )
+    original = load_pairs_file(write(project, VALID_PAIRS.replace("robot: husky\n", in_place)))
+    pinned = pinned_for(pair_named(original, "same"))
+    destination = tmp_path / "artifacts" / "gate" / "same.lasertest.yaml"
+    # The description moves on: the repro keeps the mount the run read.
+    (project / "robot.urdf").write_text(ROBOT.replace('xyz="0.3 0 0.2"', 'xyz="0.1 0 0.2"'))
+
+    assert_replays(original, "same", pinned, replay(original, "same", pinned, destination))
+    text = destination.read_text()
+    assert "robot: its laser mount and body as read from robot.urdf, pinned as read" in text
+    assert "urdf" not in yaml.safe_load(text)["robot"]

@@ -78,6 +78,16 @@ def test_at_a_git_ref_the_mount_is_the_committed_descriptions(tmp_path: Path) ->
     assert "at HEAD" in spec.robot.name
 
 
+def test_a_robot_written_in_place_with_its_mount_needs_no_description(tmp_path: Path) -> None:
+    written = PAIRS.replace(
+        "  urdf: robot.urdf\n",
+        "  name: R2\n  laser_mount: {xyz: [0.2, 0, 0.4], rpy: [0, 0, 0]}\n",
+    )
+    robot = load(tmp_path, written).robot
+    assert (robot.name, robot.laser_mount.xyz) == ("R2", (0.2, 0.0, 0.4))
+    assert robot.body.height == 0.3
+
+
 def test_a_name_written_in_place_names_the_robot(tmp_path: Path) -> None:
     spec = load(tmp_path, PAIRS.replace("  urdf: robot.urdf\n", "  urdf: robot.urdf\n  name: R1\n"))
     assert spec.robot.name == "R1"
@@ -170,7 +180,7 @@ CASES = {
         1,
         "robot.urdf",
         "missing",
-        "reads its laser mount from its description",
+        "to read the laser mount from the robot's description, or `laser_mount:",
     ),
     "no body": Case(
         "  body: {height: 0.3}\n",
