@@ -126,8 +126,7 @@ def _world_walls(world: XmlElement, locate: Locate) -> list[Box]:
                 "under `walls:`, and remove the <include>",
             )
     models = world.all("model")
-    boxes = [box for model in models for box in _model_walls(model, Pose3D(), False, locate)]
-    return [box for box in boxes if box.height > GROUND]  # the rest is floor
+    return [box for model in models for box in _model_walls(model, Pose3D(), False, locate)]
 
 
 def _model_walls(model: XmlElement, parent: Pose3D, static: bool, locate: Locate) -> list[Box]:
@@ -135,12 +134,13 @@ def _model_walls(model: XmlElement, parent: Pose3D, static: bool, locate: Locate
     world's, `static` whether a model it is nested in is static."""
     static = static or _is_static(model)
     pose = parent.then(sdf_pose(model.child("pose"), locate))
-    walls = [
-        _wall(collision, pose.then(sdf_pose(link.child("pose"), locate)), locate)
-        for link in model.all("link")
-        for collision in link.all("collision")
-        if static and not _is_plane(collision)
-    ]
+    walls: list[Box] = []
+    for link in model.all("link") if static else ():
+        link_pose = pose.then(sdf_pose(link.child("pose"), locate))
+        for collision in link.all("collision"):
+            wall = None if _is_plane(collision) else _wall(collision, link_pose, locate)
+            if wall is not None:  # neither the ground nor a floor
+                walls.append(wall)
     for nested in model.all("model"):
         walls += _model_walls(nested, pose, static, locate)
     return walls
@@ -156,9 +156,29 @@ def _is_plane(collision: XmlElement) -> bool:
     return geometry is not None and geometry.child("plane") is not None
 
 
-def _wall(collision: XmlElement, link: Pose3D, locate: Locate) -> Box:
+def _wall(collision: XmlElement, link: Pose3D, locate: Locate) -> Box | None:
     """A box collision of a link at pose `link` (in the world), as a wall standing on the
-    ground."""
+    ground; None for a floor."""
+    length, width, depth = _size(_box(collision, locate), locate)
+    pose = link.then(sdf_pose(collision.child("pose"), locate))
+    rotation = pose.rotation()
+    if abs(rotation[2, 2]) < 1.0 - LEVEL:
+        raise locate(collision).error("the box is tilted: it does not stand upright", FIX_BOX)
+    x, y, z = (float(value) for value in pose.xyz)
+    bottom, top = z - depth / 2.0, z + depth / 2.0
+    if top <= GROUND:
+        return None
+    where = locate(collision)
+    if bottom > GROUND:
+        raise where.error(f"the box's bottom lies {bottom:.3f} m above the ground", FIX_BOX)
+    for value, bounds in ((x, COORDINATE), (y, COORDINATE), (length, EXTENT), (width, EXTENT)):
+        bounds.check(where, value)
+    yaw = math.atan2(rotation[1, 0], rotation[0, 0])
+    return Box(x, y, yaw, length, width, HEIGHT.check(where, top))
+
+
+def _box(collision: XmlElement, locate: Locate) -> XmlElement:
+    """The collision's `<box>`; any other geometry is an error at its line."""
     geometry = collision.child("geometry")
     box = geometry.child("box") if geometry is not None else None
     if box is None:
@@ -168,22 +188,7 @@ def _wall(collision: XmlElement, link: Pose3D, locate: Locate) -> Box:
             "is not a wall the gate can stand",
             FIX_BOX,
         )
-    length, width, depth = _size(box, locate)
-    pose = link.then(sdf_pose(collision.child("pose"), locate))
-    rotation = pose.rotation()
-    if abs(rotation[2, 2]) < 1.0 - LEVEL:
-        raise locate(collision).error("the box is tilted: it does not stand upright", FIX_BOX)
-    x, y, z = (float(value) for value in pose.xyz)
-    bottom, top = z - depth / 2.0, z + depth / 2.0
-    yaw = math.atan2(rotation[1, 0], rotation[0, 0])
-    if top <= GROUND:  # floor, which the caller leaves out
-        return Box(x, y, yaw, length, width, top)
-    where = locate(collision)
-    if bottom > GROUND:
-        raise where.error(f"the box's bottom lies {bottom:.3f} m above the ground", FIX_BOX)
-    for value, bounds in ((x, COORDINATE), (y, COORDINATE), (length, EXTENT), (width, EXTENT)):
-        bounds.check(where, value)
-    return Box(x, y, yaw, length, width, HEIGHT.check(where, top))
+    return box
 
 
 def _size(box: XmlElement, locate: Locate) -> tuple[float, float, float]:
