@@ -15,6 +15,7 @@ import dataclasses
 import os
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TypeGuard
 
 import yaml
 
@@ -170,12 +171,10 @@ def _robot_in_place(written: dict[str, object], spec: PairsFile, destination: Pa
     """A robot written in place, as written, its files' paths rewritten relative to where the
     repro goes; read around a description, with the mount (and name and body) it read pinned
     in place of the description, which moves on as a scanner's does."""
-    robot, original = spec.robot, spec.path
+    robot = spec.robot
     kept = {key: value for key, value in written.items() if key not in DESCRIPTION_KEYS}
-    for key in ROBOT_FILES:
-        if isinstance(kept.get(key), str):
-            kept[key] = _relocated(str(kept[key]), original, destination)
-    if len(kept) == len(written):
+    kept = _files_relocated(kept, ROBOT_FILES, spec.path, destination)
+    if not _around_description(written):
         return kept
     # Written in full (YAML round-trips a float's repr), so that the replay is the same robot.
     mount = robot.laser_mount
@@ -190,11 +189,18 @@ def _world_from(world: object, original: Path, destination: Path) -> object:
     the repro goes."""
     if not isinstance(world, dict):
         return world
+    return _files_relocated(world, WORLD_FILES, original, destination)
+
+
+def _files_relocated(
+    section: dict[str, object], keys: Sequence[str], original: Path, destination: Path
+) -> dict[str, object]:
+    """`section` as written, the paths its `keys` give rewritten with `_relocated`."""
     return {
         key: _relocated(value, original, destination)
-        if key in WORLD_FILES and isinstance(value, str)
+        if key in keys and isinstance(value, str)
         else value
-        for key, value in world.items()
+        for key, value in section.items()
     }
 
 
@@ -208,9 +214,14 @@ def _relocated(path: str, original: Path, destination: Path) -> str:
     return Path(os.path.relpath(target, destination.parent.resolve())).as_posix()
 
 
+def _around_description(written: object) -> TypeGuard[dict[str, object]]:
+    """Whether `robot:` was written in place around the robot's description."""
+    return isinstance(written, dict) and any(key in written for key in DESCRIPTION_KEYS)
+
+
 def _robot_notes(written: object) -> list[str]:
     """Where a robot written around its description came from."""
-    if not isinstance(written, dict) or not any(key in written for key in DESCRIPTION_KEYS):
+    if not _around_description(written):
         return []
     source = written.get("urdf", written.get("sdf"))
     return [f"robot: its laser mount and body as read from {source}, pinned as read"]

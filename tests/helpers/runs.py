@@ -10,6 +10,8 @@ from typing import NamedTuple, Protocol
 
 import pytest
 
+from pytest_lasertest.inputs.errors import SpecError
+
 # Runs that test the plumbing run the coverage items alone: no solver, no simulator.
 NO_PLACEMENTS = ("-m", "coverage")
 
@@ -61,6 +63,19 @@ def assert_one_clean_error(
     result.stdout.no_fnmatch_line("*Traceback*")
     result.stdout.no_re_match_line(r".*\.py:\d+")
     result.stdout.no_fnmatch_line("*CollectError*")
+
+
+def assert_spec_error(error: SpecError, file: str, case: Case) -> None:
+    """The error, raised while reading, names `file`, the case's line and field, its problem
+    and its fix, in one line and a fix line."""
+    assert error.location.path.name == file
+    assert (error.location.line, error.field) == (case.line, case.field)
+    assert case.problem in error.problem
+    assert case.fix in error.fix
+    where = f":{case.line}: {case.field}: " if case.field else f":{case.line}: "
+    assert where in str(error)
+    assert str(error).count("\n") == 1
+    assert "\n  fix: " in str(error)
 
 
 class JunitCase(NamedTuple):

@@ -18,7 +18,7 @@ from pytest_lasertest.inputs.node import SpecNode, read_root
 from pytest_lasertest.model.occupancy import FREE, OCCUPIED, UNKNOWN, OccupancyGrid
 from pytest_lasertest.pairsfile.maps import read_map
 from tests.helpers import WORLDS
-from tests.helpers.runs import Case
+from tests.helpers.runs import Case, assert_spec_error
 from tests.helpers.texts import write
 
 # Line numbers matter: the cases below break one line of each.
@@ -363,19 +363,6 @@ MAP_CASES = {
 }
 
 
-def assert_error(error: SpecError, file: str, case: Case) -> None:
-    """The error names `file`, the case's line and field, its problem and its fix, in one line
-    and a fix line."""
-    assert error.location.path.name == file
-    assert (error.location.line, error.field) == (case.line, case.field)
-    assert case.problem in error.problem
-    assert case.fix in error.fix
-    where = f":{case.line}: {case.field}: " if case.field else f":{case.line}: "
-    assert where in str(error)
-    assert str(error).count("\n") == 1
-    assert "\n  fix: " in str(error)
-
-
 @pytest.mark.parametrize("case", MAP_CASES.values(), ids=MAP_CASES.keys())
 def test_a_broken_map_file_is_one_error_naming_it_and_its_line_field_and_fix(
     tmp_path: Path, case: Case
@@ -384,7 +371,7 @@ def test_a_broken_map_file_is_one_error_naming_it_and_its_line_field_and_fix(
     write_map(tmp_path, WALL_ON_TOP, MAP.replace(case.old, case.new, 1))
     with pytest.raises(SpecError) as raised:
         read_map(map_node(tmp_path))
-    assert_error(raised.value, "doorway.yaml", case)
+    assert_spec_error(raised.value, "doorway.yaml", case)
 
 
 # Each spoils the image of a valid map; the error is at the map file's `image:` line.
@@ -436,7 +423,7 @@ def test_an_image_that_cannot_be_read_is_an_error_at_the_map_files_image_line(
     spoil(tmp_path)
     with pytest.raises(SpecError) as raised:
         read_map(map_node(tmp_path))
-    assert_error(raised.value, "doorway.yaml", Case("", "", 1, "image", problem, fix))
+    assert_spec_error(raised.value, "doorway.yaml", Case("", "", 1, "image", problem, fix))
 
 
 PAIRS_CASES = {
@@ -475,7 +462,7 @@ def test_a_map_the_pairs_file_cannot_name_is_an_error_at_the_pairs_files_line(
     write_map(tmp_path, WALL_ON_TOP)
     with pytest.raises(SpecError) as raised:
         read_map(map_node(tmp_path, PAIRS.replace(case.old, case.new)))
-    assert_error(raised.value, "gate.lasertest.yaml", case)
+    assert_spec_error(raised.value, "gate.lasertest.yaml", case)
 
 
 @pytest.mark.parametrize(

@@ -16,7 +16,7 @@ from pytest_lasertest.model.obstacles import Box
 from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.pairsfile.sdf_world import read_sdf_walls
 from tests.helpers import DATA
-from tests.helpers.runs import Case
+from tests.helpers.runs import Case, assert_spec_error
 from tests.helpers.texts import write
 
 # Line numbers matter: the cases below break one line of each.
@@ -230,16 +230,6 @@ WORLD_CASES = {
 }
 
 
-def assert_error(error: SpecError, file: str, case: Case) -> None:
-    """The error names `file`, the case's line and field, its problem and its fix."""
-    assert error.location.path.name == file
-    assert (error.location.line, error.field) == (case.line, case.field)
-    assert case.problem in error.problem
-    assert case.fix in error.fix
-    assert str(error).count("\n") == 1
-    assert "\n  fix: " in str(error)
-
-
 @pytest.mark.parametrize("case", WORLD_CASES.values(), ids=WORLD_CASES.keys())
 def test_what_the_gate_cannot_stand_as_a_wall_is_an_error_at_its_line_in_the_world_file(
     tmp_path: Path, case: Case
@@ -250,7 +240,7 @@ def test_what_the_gate_cannot_stand_as_a_wall_is_an_error_at_its_line_in_the_wor
         world = world.replace("</world>", "</model>")
     with pytest.raises(SpecError) as raised:
         read_sdf_walls(sdf_node(tmp_path, world))
-    assert_error(raised.value, "corridor.world", case)
+    assert_spec_error(raised.value, "corridor.world", case)
 
 
 def test_an_sdf_file_that_is_not_xml_is_an_error_at_the_line_that_breaks(tmp_path: Path) -> None:
@@ -297,7 +287,7 @@ def test_an_sdf_world_the_pairs_file_cannot_use_is_an_error_at_the_pairs_files_l
     write(tmp_path / "worlds", carts, "carts.world")
     with pytest.raises(SpecError) as raised:
         read_sdf_walls(sdf_node(tmp_path, pairs=PAIRS.replace(case.old, case.new)))
-    assert_error(raised.value, "gate.lasertest.yaml", case)
+    assert_spec_error(raised.value, "gate.lasertest.yaml", case)
 
 
 def test_gz_sims_example_world_is_refused_at_its_floating_lidar_box_not_at_its_movable_cube(
