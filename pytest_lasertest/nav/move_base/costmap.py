@@ -173,8 +173,10 @@ class Costmap:
         own = self.grid[rows, columns]
         if self.static is None:
             return own
-        static = self.static.window(self.origin, self.settings.resolution, self.settings.cells)
-        return with_max(static[rows, columns], own)
+        cells = self.settings.cells
+        block = range(*columns.indices(cells)), range(*rows.indices(cells))
+        static = self.static.block(self.origin, self.settings.resolution, *block)
+        return with_max(static, own)
 
     def costs(self, columns: slice = slice(None), rows: slice = slice(None)) -> Grid:
         """The costs of the window's block of `columns` and `rows` (all by default) with the
@@ -390,29 +392,26 @@ class StaticLayer:
         # Row and column 0 stand for off the map, where the layer writes nothing and the master
         # keeps what resetMap left there.
         self._cells: Grid = np.pad(costs, ((1, 0), (1, 0)), constant_values=unseen)
-        self._window: tuple[tuple[float, float], float, int, Grid] | None = None
 
-    def window(self, origin: tuple[float, float], resolution: float, cells: int) -> Grid:
-        """What the layer writes into a window of `cells` cells of `resolution` m a side from
-        `origin` (m, its lower left corner), indexed [y, x]: each cell's the map cell under its
-        centre, or the master's reset value off the map. Read again only when the window has
-        moved."""
-        if self._window is not None and self._window[:3] == (origin, resolution, cells):
-            return self._window[3]
-        columns = self._under(origin[0], resolution, cells, self.map.origin[0], self.map.width)
-        rows = self._under(origin[1], resolution, cells, self.map.origin[1], self.map.height)
-        window: Grid = self._cells[np.ix_(rows, columns)]
-        window.setflags(write=False)
-        self._window = (origin, resolution, cells, window)
-        return window
+    def block(
+        self, origin: tuple[float, float], resolution: float, columns: range, rows: range
+    ) -> Grid:
+        """What the layer writes into the `columns` and `rows` of a window of `resolution` m
+        cells from `origin` (m, its lower left corner), indexed [y, x]: each cell's the map cell
+        under its centre, or the master's reset value off the map. Only the block is read: the
+        window rolls with the robot, and a 100 m one holds four million cells."""
+        x = self._under(origin[0], resolution, columns, self.map.origin[0], self.map.width)
+        y = self._under(origin[1], resolution, rows, self.map.origin[1], self.map.height)
+        block: Grid = self._cells[np.ix_(y, x)]
+        return block
 
     def _under(
-        self, low: float, resolution: float, cells: int, map_low: float, map_cells: int
+        self, low: float, resolution: float, cells: range, map_low: float, map_cells: int
     ) -> IntArray:
-        """Along one axis: the index into `_cells` of the map cell under each window cell's
-        centre (Costmap2D::mapToWorld), 0 off the map; the map's worldToMap refuses a point
-        below its origin and truncates the rest."""
-        centres = low + (np.arange(cells) + 0.5) * resolution
+        """Along one axis: the index into `_cells` of the map cell under the centre of each of
+        the window's `cells` (Costmap2D::mapToWorld), 0 off the map; the map's worldToMap
+        refuses a point below its origin and truncates the rest."""
+        centres = low + (np.arange(cells.start, cells.stop) + 0.5) * resolution
         index = ((centres - map_low) / self.map.resolution).astype(np.int64)
         on = (centres >= map_low) & (index < map_cells)
         under: IntArray = np.where(on, index + 1, 0)

@@ -34,10 +34,12 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.nav.move_base.clearance import Edges, Poses, least_gaps
 from pytest_lasertest.nav.move_base.costmap import InflationCost
 
 # What SimpleTrajectoryGenerator allows a velocity below its limits.
 EPSILON = 1e-4
+SQUARE_CELLS = 4
 
 
 @dataclass(frozen=True)
@@ -121,12 +123,10 @@ class LocalPlanner:
         # m: MapGrid's distance for a cell in an obstacle, the local window's cell count in
         # cells (`window` along each side).
         self.obstacle_distance = resolution * window**2
-        # Each edge as an outward normal and offset: signed distance = normal . point - offset.
-        edges = np.roll(footprint, -1, axis=0) - footprint
-        normals = np.column_stack([edges[:, 1], -edges[:, 0]])
-        normals /= np.hypot(normals[:, 0], normals[:, 1])[:, np.newaxis]
-        self._normals = normals  # (V, 2)
-        self._offsets = (normals * footprint).sum(axis=1)  # (V,) m
+        self.edges = Edges.of(footprint)
+        # m: lethal cells are grouped in squares of four cells a side to skip those that cannot
+        # be nearest the footprint (clearance.py).
+        self.square = SQUARE_CELLS * resolution
         self.oscillation = Oscillation(
             settings.oscillation_reset_dist, settings.oscillation_reset_angle
         )
@@ -245,32 +245,9 @@ class LocalPlanner:
         near = _within(around.lethal, x, y, self.reach * float(scale.max()))
         if not len(near):
             return np.zeros(count)
-        steps = rollouts.x.shape[1]
-        gap = self._gaps(x, y, rollouts.yaw.ravel(), near, np.repeat(scale, steps))
-        least = gap.reshape(count, -1).min(axis=1) - self.half_cell  # m, to a lethal cell
+        poses = Poses(x, y, rollouts.yaw.ravel(), np.repeat(scale, rollouts.x.shape[1]), count)
+        least = least_gaps(self.edges, poses, near, self.square) - self.half_cell  # m
         return np.where(least <= 0.0, np.inf, settings.occdist_scale * self.cost(least))
-
-    def _gaps(
-        self, x: FloatArray, y: FloatArray, yaw: FloatArray, lethal: FloatArray, scale: FloatArray
-    ) -> FloatArray:
-        """The least signed distance (m) from the footprint, grown by `scale` (P,), at each
-        pose [x, y, yaw] (P,) each, to a lethal cell centre (N, 2), shape (P,): <= 0 when one
-        lies under it. Outside, the distance to the farthest edge line: exact beside an edge,
-        less by a corner."""
-        dx = lethal[:, 0] - x[:, np.newaxis]  # (P, N)
-        dy = lethal[:, 1] - y[:, np.newaxis]
-        cos, sin = np.cos(yaw[:, np.newaxis]), np.sin(yaw[:, np.newaxis])
-        forward, left = dx * cos + dy * sin, dy * cos - dx * sin
-        signed = np.full(forward.shape, -np.inf)
-        offsets = scale[:, np.newaxis] * self._offsets  # (P, V)
-        for edge, (normal_x, normal_y) in enumerate(self._normals):
-            np.maximum(
-                signed,
-                normal_x * forward + normal_y * left - offsets[:, edge : edge + 1],
-                out=signed,
-            )
-        gaps: FloatArray = signed.min(axis=1)
-        return gaps
 
     def clear(self, poses: FloatArray, lethal: FloatArray) -> bool:
         """Whether the footprint at every pose (P, 3) is clear of the lethal cell centres
@@ -278,12 +255,15 @@ class LocalPlanner:
         if not len(lethal):
             return True
         x, y, yaw = poses.T
-        gaps = self._gaps(x, y, yaw, lethal, np.ones(len(poses)))
-        return bool((gaps > self.half_cell).all())
+        one = Poses(x, y, yaw, np.ones(len(poses)), groups=1)
+        return bool(least_gaps(self.edges, one, lethal, self.square)[0] > self.half_cell)
 
     def _too_near(self, points: FloatArray, lethal: FloatArray) -> np.ndarray:
         """Which points (P, 2) lie in an inscribed cell: within the inscribed radius of a
         lethal cell, shape (P,)."""
+        # Only cells within the inscribed radius of the points' bounding box can be that near
+        # (the margin covers rounding).
+        lethal = _within(lethal, points[:, 0], points[:, 1], self.cost.inscribed + 1e-9)
         if not len(lethal):
             return np.zeros(len(points), dtype=bool)
         return _nearest(points, lethal) <= self.cost.inscribed

@@ -203,27 +203,29 @@ def test_each_window_cell_reads_the_map_cell_under_its_centre_wherever_the_windo
         costmap.update(NOTHING, (float(x), float(y), 0.0))
         assert costmap.static is not None
         cells = costmap.settings.cells
-        window = costmap.static.window(costmap.origin, costmap.settings.resolution, cells)
+        everywhere = range(cells)
+        resolution = costmap.settings.resolution
+        window = costmap.static.block(costmap.origin, resolution, everywhere, everywhere)
         columns, rows = np.meshgrid(np.arange(cells), np.arange(cells))
         centres = costmap.centres(columns.ravel(), rows.ravel())
         expected = table[grid.values_at(centres).view(np.uint8)].reshape(cells, cells)
         np.testing.assert_array_equal(window, expected)
 
 
-def test_the_window_reads_the_map_again_only_when_it_moves() -> None:
+def test_a_block_of_the_window_reads_what_the_whole_window_holds_there() -> None:
     costmap = with_map(WALL)
+    costmap.update(NOTHING, (0.37, -0.21, 0.0))
     assert costmap.static is not None
-    settings = costmap.settings
-
-    def window() -> np.ndarray:
-        assert costmap.static is not None
-        return costmap.static.window(costmap.origin, settings.resolution, settings.cells)
-
-    first = window()
-    costmap.update(NOTHING, (0.01, 0.0, 0.0))  # within the cell: the window stays
-    assert window() is first
-    costmap.update(NOTHING, (0.5, 0.0, 0.0))
-    assert window() is not first
+    settings, everywhere = costmap.settings, range(costmap.settings.cells)
+    whole = costmap.static.block(costmap.origin, settings.resolution, everywhere, everywhere)
+    x, y, _ = costmap.cell_of(np.array([[1.0, 0.0]]))  # the row through the wall, from 1 m
+    columns, rows = range(int(x[0]), int(x[0]) + 40), range(int(y[0]), int(y[0]) + 3)
+    block = costmap.static.block(costmap.origin, settings.resolution, columns, rows)
+    np.testing.assert_array_equal(
+        block, whole[rows.start : rows.stop][:, columns.start : columns.stop]
+    )
+    assert (block == LETHAL).any()  # the wall crosses it
+    assert (block != LETHAL).any()
 
 
 def test_without_a_map_the_costs_combine_nothing_but_the_obstacle_layer() -> None:
