@@ -22,6 +22,7 @@ import yaml
 from pytest_lasertest.artifacts.files import write_text
 from pytest_lasertest.inputs.errors import Location, SpecError, display_path
 from pytest_lasertest.inputs.yamlfile import read_text
+from pytest_lasertest.pairsfile.body import body_fields
 from pytest_lasertest.pairsfile.bundled import bundled_robots
 from pytest_lasertest.pairsfile.described import DESCRIPTION_KEYS
 from pytest_lasertest.pairsfile.pairs import Pair, PairsFile
@@ -180,7 +181,7 @@ def _robot_in_place(written: dict[str, object], spec: PairsFile, destination: Pa
     mount = robot.laser_mount
     kept.setdefault("name", robot.name)
     kept["laser_mount"] = {"xyz": [*map(float, mount.xyz)], "rpy": [*map(float, mount.rpy)]}
-    kept.setdefault("body", {"height": float(robot.body.height)})
+    kept.setdefault("body", body_fields(robot.body))
     return kept
 
 

@@ -1,31 +1,27 @@
-"""How high a URDF robot's collision geometry reaches above its base frame: the height of the
-prism the simulator drives for a robot written around its description.
+"""A URDF robot's collision geometry, placed in its base frame: the body the simulator drives for
+a robot written around its description.
 
 Each link's `<collision>` is placed by the link's pose in the base frame (`mounts.link_poses`,
-every joint at zero) and the collision's `<origin>`, as urdfdom composes them. A box reaches up
-by its half extents along its rotated axes, a cylinder (its axis its own z) by half its length
-along the axis and its radius across it, a sphere by its radius. A mesh's extent is in its file,
-which the gate does not read: a description with a collision mesh gives no height.
+every joint at zero) and the collision's `<origin>`, as urdfdom composes them. Boxes, cylinders
+(their axis their own z) and spheres are read as they are. A mesh's extent is in its file, which
+the gate does not read: a description with a collision mesh gives no body.
 """
 
 from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from pytest_lasertest.descriptions.laser_block import Locate
 from pytest_lasertest.descriptions.mounts import link_poses, urdf_origin
 from pytest_lasertest.descriptions.xmlfile import XmlElement
+from pytest_lasertest.model.body import SHAPES, Collision
 
-PRIMITIVES = ("box", "cylinder", "sphere")
 
-
-def collision_top(robot: XmlElement, base: str, locate: Locate) -> float | None:
-    """The highest point (m) of the collision geometry joined to `base`, in its frame; None when
-    a collision is a mesh (or of a shape URDF does not define), or there is none."""
+def collisions(robot: XmlElement, base: str, locate: Locate) -> tuple[Collision, ...] | None:
+    """Every collision of the links joined to `base`, in its frame; None when one is a mesh (or
+    of a shape URDF does not define), or there is none."""
     poses = link_poses(robot, base, locate)
-    tops = []
+    placed = []
     for link in robot.all("link"):
         pose = poses.get(link.get("name") or "")
         if pose is None:  # not joined to the base: no part of this robot
@@ -33,24 +29,22 @@ def collision_top(robot: XmlElement, base: str, locate: Locate) -> float | None:
         for collision in link.all("collision"):
             geometry = collision.child("geometry")
             shape = geometry.children[0] if geometry is not None and geometry.children else None
-            if shape is None or shape.tag not in PRIMITIVES:
+            kind = SHAPES.get(shape.tag) if shape is not None else None
+            if shape is None or kind is None:
                 return None
-            placed = pose.then(urdf_origin(collision, locate))
-            tops.append(placed.xyz[2] + _reach_up(shape, placed.rotation(), locate))
-    return max(tops) if tops else None
+            origin = pose.then(urdf_origin(collision, locate))
+            placed.append(Collision(kind, _size(shape, locate), origin))
+    return tuple(placed) or None
 
 
-def _reach_up(shape: XmlElement, rotation: np.ndarray, locate: Locate) -> float:
-    """How far (m) the shape reaches above its centre, its axes turned by `rotation` (3, 3)."""
-    up = np.abs(rotation[2])  # the world's z along each of the shape's axes
+def _size(shape: XmlElement, locate: Locate) -> tuple[float, ...]:
+    """A box's size, a cylinder's radius and length, a sphere's radius (m)."""
     if shape.tag == "box":
-        half = np.array(_lengths(shape, "size", 3, locate)) / 2.0
-        return float(up @ half)
-    radius = _lengths(shape, "radius", 1, locate)[0]
+        return _lengths(shape, "size", 3, locate)
+    radius = _lengths(shape, "radius", 1, locate)
     if shape.tag == "sphere":
         return radius
-    length = _lengths(shape, "length", 1, locate)[0]
-    return float(up[2] * length / 2.0 + radius * math.sqrt(max(1.0 - up[2] ** 2, 0.0)))
+    return radius + _lengths(shape, "length", 1, locate)
 
 
 def _lengths(shape: XmlElement, attribute: str, count: int, locate: Locate) -> tuple[float, ...]:

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from pytest_lasertest.descriptions.absent import no_laser_error
-from pytest_lasertest.descriptions.collisions import collision_top
+from pytest_lasertest.descriptions.collisions import collisions
 from pytest_lasertest.descriptions.laser_block import (
     Locate,
     check_planar,
@@ -29,6 +29,7 @@ from pytest_lasertest.descriptions.xmlfile import XmlElement, parse_xml
 from pytest_lasertest.inputs.errors import Location, SpecError
 from pytest_lasertest.inputs.files import UnreadableFile
 from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.model.body import Collision
 
 
 @dataclass(frozen=True)
@@ -89,16 +90,16 @@ class Laser:
             )
         return urdf_mount(found.models[0], found.link, found.sensor, locate)
 
-    def collision_top(self) -> float | None:
-        """How high (m) the collision geometry of the robot carrying it reaches above its base
-        frame (`collisions.py`); None for an SDF model, or where that height is not known."""
+    def collisions(self) -> tuple[Collision, ...] | None:
+        """The collision geometry of the robot carrying it, in its base frame (`collisions.py`);
+        None for an SDF model, or where a collision is a mesh."""
         if self._found.link_element is not None:
             return None
 
         def locate(element: XmlElement) -> SpecNode:  # named for itself, not for the laser
             return dataclasses.replace(self._locate(element), field=f"<{element.tag}>")
 
-        return collision_top(self._found.models[0], self.mount().base, locate)
+        return collisions(self._found.models[0], self.mount().base, locate)
 
 
 def read_lasers(description: DescriptionFile) -> tuple[Laser, ...]:

@@ -3,37 +3,14 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
 
 import numpy as np
 
+from pytest_lasertest.model.body import HUSKY_BODY, Body
 from pytest_lasertest.model.geometry import FloatArray, Pose3D
 
 # A ROS 2 parameter's value, as a params file gives it.
 ParameterValue = bool | int | float | str | tuple["ParameterValue", ...]
-
-
-@dataclass(frozen=True)
-class Body:
-    """What the simulator drives: pybullet_data's Husky through its wheels, or a prism of the
-    robot's footprint moved at the commanded twist."""
-
-    kind: Literal["husky", "prism"]
-    outline: tuple[tuple[float, float], ...] = ()  # m, the prism's footprint, unpadded
-    height: float = 0.0  # m, the prism's
-
-    def describe(self) -> str:
-        """`pybullet_data's Husky, driven through its wheels`, or the prism's size."""
-        if self.kind == "husky":
-            return "pybullet_data's Husky, driven through its wheels"
-        xs, ys = zip(*self.outline, strict=True)
-        return (
-            f"a prism of its footprint, {max(xs) - min(xs):.2f} x {max(ys) - min(ys):.2f} x "
-            f"{self.height:.2f} m, moved at the commanded twist"
-        )
-
-
-HUSKY_BODY = Body("husky")
 
 
 @dataclass(frozen=True)

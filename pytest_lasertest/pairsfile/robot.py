@@ -4,7 +4,7 @@ gives the mount:
 
     robot:
       urdf: robots/mybot.urdf.xacro     # with ref:, args:, packages:, sensor: as a scanner's
-      body: {height: 0.3}               # optional: as high as its collision geometry
+      body: {height: 0.3}               # optional: its description's collision shapes
       footprint: [[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]
       max_linear_velocity: 0.8
       ...                               # the robot file's other fields, but laser_mount
@@ -16,13 +16,14 @@ import difflib
 from pathlib import Path
 
 from pytest_lasertest.inputs.node import Bounds, SpecNode, read_root
+from pytest_lasertest.model.body import Body
 from pytest_lasertest.model.geometry import Pose3D
-from pytest_lasertest.model.robot import HUSKY_BODY, Body, Robot, pad_footprint
+from pytest_lasertest.model.robot import Robot, pad_footprint
 from pytest_lasertest.model.scanner_limits import ProfileError, check_mount
+from pytest_lasertest.pairsfile.body import BODY_FIX, described_body, read_body
 from pytest_lasertest.pairsfile.bundled import ROBOT_FILE, bundled_robots
 from pytest_lasertest.pairsfile.described import (
     DESCRIPTION_KEYS,
-    DescribedLaser,
     is_described,
     read_described,
 )
@@ -102,18 +103,6 @@ REACTION_TIME = Bounds(
     "no robot reacts before it reads a scan",
     "a robot that reacts 10 s late has driven past anything it saw",
 )  # (0.2)
-# A prism's height: a body the laser's rays pass over, or a tower no wheeled base is.
-BODY_HEIGHT = Bounds(
-    0.01,
-    5.0,
-    "m",
-    "a body this flat is no robot",
-    "no wheeled robot's base stands 5 m high",
-)  # (the Husky's base: 0.39)
-BODY_FIX = (
-    "write `body: husky` (pybullet_data's Husky, driven through its wheels) or `body: {height: H}`"
-    " (a prism of the footprint, H m high, moved at the commanded twist)"
-)
 PADDING = Bounds(
     0.0, 1.0, "m", "costmap_2d pads a footprint outward", "padding is a few centimetres"
 )  # (0.01)
@@ -164,20 +153,8 @@ def _read_in_place(node: SpecNode) -> Robot:
     # A profile's mount is checked as it is made (level scan plane): it serves as the robot's.
     laser = read_described(node, described)
     name = fields["name"].text() if "name" in fields else laser.label
-    height = None if "body" in fields else _described_height(node, file_node, laser)
-    return _robot(fields, name, laser.profile.pose, height)
-
-
-def _described_height(node: SpecNode, file_node: SpecNode, laser: DescribedLaser) -> float:
-    """How high the description's collision geometry reaches: the prism's height."""
-    top = laser.laser.collision_top()
-    if top is None:
-        raise node.missing(
-            "body",
-            "the description's collision geometry gives no height (it holds a mesh, or no "
-            f"collision, or it is SDF): {BODY_FIX}",
-        )
-    return BODY_HEIGHT.check(file_node, top)
+    body = None if "body" in fields else described_body(node, file_node, laser)
+    return _robot(fields, name, laser.profile.pose, body)
 
 
 def _require(node: SpecNode, fields: dict[str, SpecNode], keys: tuple[str, ...], what: str) -> None:
@@ -188,15 +165,16 @@ def _require(node: SpecNode, fields: dict[str, SpecNode], keys: tuple[str, ...],
 
 
 def _robot(
-    fields: dict[str, SpecNode], name: str, mount: Pose3D, height: float | None = None
+    fields: dict[str, SpecNode], name: str, mount: Pose3D, body: Body | None = None
 ) -> Robot:
     """The robot the robot file's fields describe, named `name`, its laser at `mount`; without
-    a `body` field, a prism of its footprint `height` m high."""
+    a `body` field, `body`."""
     top_speed = fields["max_linear_velocity"].number_in(SPEED)
     top_turn_rate = fields["max_angular_velocity"].number_in(TURN_RATE)
     padding = _optional(fields, "footprint_padding", PADDING, 0.0)
     footprint = _footprint(fields["footprint"])
-    body = _body(fields["body"], footprint) if height is None else Body("prism", footprint, height)
+    if body is None:
+        body = read_body(fields["body"], footprint)
     robot = Robot(
         name=name,
         laser_mount=mount,
@@ -225,18 +203,6 @@ def _mount(node: SpecNode) -> Pose3D:
     except ProfileError as error:
         raise mount[error.field.split(".")[-1]].error(error.problem, error.fix) from None
     return pose
-
-
-def _body(node: SpecNode, footprint: tuple[tuple[float, float], ...]) -> Body:
-    """The body the simulator drives: the Husky by name, or a prism of the (unpadded) footprint."""
-    if isinstance(node.value, str):
-        if node.text() != "husky":
-            raise node.error(f"{node.value!r} is not a body the simulator has", BODY_FIX)
-        return HUSKY_BODY
-    fields = node.mapping(("height",), what="body fields")
-    if "height" not in fields:
-        raise node.missing("height", BODY_FIX)
-    return Body("prism", footprint, fields["height"].number_in(BODY_HEIGHT))
 
 
 def _optional(fields: dict[str, SpecNode], key: str, bounds: Bounds, default: float) -> float:

@@ -15,9 +15,9 @@ from types import ModuleType
 
 import numpy as np
 
+from pytest_lasertest.model.body import HUSKY_BODY, Body
 from pytest_lasertest.model.geometry import FloatArray, Pose2D
 from pytest_lasertest.model.obstacles import Box, Obstacle
-from pytest_lasertest.model.robot import HUSKY_BODY, Body
 
 # PyBullet's table of physics clients: ids run from 0 to this, and are reused once disconnected.
 MAX_CLIENTS = 1024
@@ -39,7 +39,8 @@ WHEEL_TORQUES = (WHEEL_TORQUE,) * len(WHEELS)
 # grip so hard that the turn rate jumps with the wheel speeds (0.4 rad/s for 0.25 commanded, 2.3
 # for 1.0); friction along the axle scaled by this factor lets them slide and the rate follow.
 TYRE_SIDEWAYS_FRICTION = 0.05
-# A prism body: its mass only sets how hard it pushes what it meets (the Husky's base, about).
+# A sliding body (a description's or a prism): its mass only sets how hard it pushes what it
+# meets (the Husky's base, about).
 PRISM_MASS = 50.0  # kg
 # Inertia about its roll and pitch axes, so large that a push low or high does not tip it.
 UNTIPPABLE = 1.0e6  # kg m^2
@@ -87,9 +88,9 @@ class PhysicsClient:
 
 
 class PhysicsWorld:
-    """The ground, the robot's body (pybullet_data's Husky with its fixed links merged, or a
-    prism of its footprint) and static obstacles, in one DIRECT client stepped at a fixed time
-    step.
+    """The ground, the robot's body (pybullet_data's Husky with its fixed links merged, its
+    description's collision shapes, or a prism of its footprint) and static obstacles, in one
+    DIRECT client stepped at a fixed time step.
 
     The world is built in `client`, reset for it, or in a client of its own. Use it as a
     context manager: on exit it disconnects a client of its own, and leaves a borrowed one
@@ -113,9 +114,12 @@ class PhysicsWorld:
                 self._pybullet.resetSimulation(physicsClientId=self._client)
             self._setup(time_step)
             self.body = body
-            self.robot = (
-                self._load_husky(start) if body.kind == "husky" else self._load_prism(start)
-            )
+            loaders = {
+                "husky": self._load_husky,
+                "description": self._load_described,
+                "prism": self._load_prism,
+            }
+            self.robot = loaders[body.kind](start)
             self.obstacles = tuple(self._add_obstacle(obstacle) for obstacle in obstacles)
             self._circles = [(o.x, o.y, o.bounding_radius) for o in obstacles]
             self._reach = self._robot_reach(start)
@@ -156,7 +160,7 @@ class PhysicsWorld:
         pybullet.stepSimulation(physicsClientId=self._client)
 
     def glide(self, linear: float, angular: float, yaw: float) -> None:
-        """Move a prism body at this twist (m/s forward, rad/s), heading `yaw` (rad), for one
+        """Move a sliding body at this twist (m/s forward, rad/s), heading `yaw` (rad), for one
         time step: it slides on the ground and stops where it meets something."""
         pybullet, client = self._pybullet, self._client
         vertical = pybullet.getBaseVelocity(self.robot, physicsClientId=client)[0][2]
@@ -268,17 +272,51 @@ class PhysicsWorld:
     def _load_prism(self, start: Pose2D) -> int:
         """The footprint raised to the body's height, its base frame on the ground under its
         origin, sliding without friction."""
-        pybullet, client, body = self._pybullet, self._client, self.body
+        pybullet, body = self._pybullet, self.body
         corners = [(x, y, z) for z in (0.0, body.height) for x, y in body.outline]
         shape = pybullet.createCollisionShape(
-            pybullet.GEOM_MESH, vertices=corners, physicsClientId=client
+            pybullet.GEOM_MESH, vertices=corners, physicsClientId=self._client
         )
+        return self._slider(shape, start, 0.0)
+
+    def _load_described(self, start: Pose2D) -> int:
+        """The description's collision shapes as one rigid body standing on the lowest of them,
+        sliding without friction."""
+        pybullet, collisions = self._pybullet, self.body.collisions
+        geometries = {
+            "box": pybullet.GEOM_BOX,
+            "cylinder": pybullet.GEOM_CYLINDER,
+            "sphere": pybullet.GEOM_SPHERE,
+        }
+        shape = pybullet.createCollisionShapeArray(
+            shapeTypes=[geometries[c.shape] for c in collisions],
+            radii=[c.size[0] if c.shape != "box" else 0.0 for c in collisions],
+            halfExtents=[
+                [length / 2.0 for length in c.size] if c.shape == "box" else [0.0] * 3
+                for c in collisions
+            ],
+            lengths=[c.size[1] if c.shape == "cylinder" else 0.0 for c in collisions],
+            collisionFramePositions=[c.pose.xyz for c in collisions],
+            collisionFrameOrientations=[
+                pybullet.getQuaternionFromEuler(c.pose.rpy) for c in collisions
+            ],
+            physicsClientId=self._client,
+        )
+        # A description whose base frame is not on the ground (the Jackal's base_link) stands
+        # on its wheels all the same.
+        return self._slider(shape, start, Body.bottom(collisions))
+
+    def _slider(self, shape: int, start: Pose2D, bottom: float) -> int:
+        """A body of `shape` whose lowest point is `bottom` m above its base frame, dropped onto
+        the ground at `start`: its mass over its base origin, so that it turns on the spot
+        about it, no friction, and too stiff to tip."""
+        pybullet, client, body = self._pybullet, self._client, self.body
         robot: int = pybullet.createMultiBody(
             baseMass=PRISM_MASS,
             baseCollisionShapeIndex=shape,
-            basePosition=(start.x, start.y, DROP_HEIGHT),
+            basePosition=(start.x, start.y, DROP_HEIGHT - bottom),
             baseOrientation=pybullet.getQuaternionFromEuler((0.0, 0.0, start.yaw)),
-            baseInertialFramePosition=(0.0, 0.0, body.height / 2.0),
+            baseInertialFramePosition=(0.0, 0.0, bottom + body.height / 2.0),
             physicsClientId=client,
         )
         twist_inertia = pybullet.getDynamicsInfo(robot, -1, physicsClientId=client)[2][2]

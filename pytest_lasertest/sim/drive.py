@@ -95,7 +95,7 @@ def drive_step(
     world: PhysicsWorld, drive: Drive, command: Twist, measured: Twist, yaw: float, step: float
 ) -> tuple[float, float]:
     """Step `world` once with its body driven toward `command`, heading `yaw` (rad); what drove
-    it: the Husky's wheel speeds (rad/s), or the twist a prism moved at (m/s, rad/s)."""
+    it: the Husky's wheel speeds (rad/s), or the twist a sliding body moved at (m/s, rad/s)."""
     if world.body.kind == "husky":
         left, right = drive.wheel_speeds(command, measured, step)
         world.step(left, right)

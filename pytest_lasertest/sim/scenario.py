@@ -84,7 +84,7 @@ class Run:
     poses: FloatArray  # (T, 3) base_footprint [x, y, yaw], m, m, rad
     commands: FloatArray  # (T, 2) the command being driven [forward m/s, turn rad/s]
     # (T, 2) what drove the body: the Husky's wheel speeds [left, right] (rad/s), or the
-    # twist a prism moved at [forward m/s, turn rad/s]
+    # twist a sliding body moved at [forward m/s, turn rad/s]
     driven: FloatArray
     scans: int  # how many scans the controller was given
     verdicts: Verdicts

@@ -417,20 +417,25 @@ def test_a_relative_sdf_world_path_is_rewritten_so_the_repro_finds_the_same_worl
     assert (repro.parent / world["sdf"]).resolve() == world_file.resolve()
 
 
+# A robot written in place around robot.urdf, its body read from the description.
+IN_PLACE = (
+    "robot:\n"
+    "  urdf: robot.urdf\n"
+    "  footprint: [[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]\n"
+    "  max_linear_velocity: 0.8\n"
+    "  max_linear_acceleration: 1.5\n"
+    "  max_angular_velocity: 1.2\n"
+    "  max_angular_acceleration: 3.0\n"
+)
+
+
 def test_a_robot_written_around_its_description_replays_with_the_mount_it_read(
     tmp_path: Path,
 ) -> None:
     project = tmp_path / "project"
     write(project, ROBOT, "robot.urdf")
-    in_place = (
-        "robot:\n"
-        "  urdf: robot.urdf\n"
-        "  body: {height: 0.3}\n"
-        "  footprint: [[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]\n"
-        "  max_linear_velocity: 0.8\n"
-        "  max_linear_acceleration: 1.5\n"
-        "  max_angular_velocity: 1.2\n"
-        "  max_angular_acceleration: 3.0\n"
+    in_place = IN_PLACE.replace(
+        "  urdf: robot.urdf\n", "  urdf: robot.urdf\n  body: {height: 0.3}\n"
     )
     original = load_pairs_file(write(project, VALID_PAIRS.replace("robot: husky\n", in_place)))
     pinned = pinned_for(pair_named(original, "same"))
@@ -442,3 +447,25 @@ def test_a_robot_written_around_its_description_replays_with_the_mount_it_read(
     text = destination.read_text()
     assert "robot: its laser mount and body as read from robot.urdf, pinned as read" in text
     assert "urdf" not in yaml.safe_load(text)["robot"]
+
+
+def test_a_body_read_from_the_description_replays_as_read_after_the_description_moves_on(
+    tmp_path: Path,
+) -> None:
+    project = tmp_path / "project"
+    chassis = (
+        '<link name="base_link"><collision><origin xyz="0 0 0.1"/>'
+        '<geometry><box size="0.6 0.4 0.2"/></geometry></collision></link>'
+    )
+    write(project, ROBOT.replace('<link name="base_link"/>', chassis), "robot.urdf")
+    original = load_pairs_file(write(project, VALID_PAIRS.replace("robot: husky\n", IN_PLACE)))
+    assert original.robot.body.kind == "description"
+    pinned = pinned_for(pair_named(original, "same"))
+    destination = tmp_path / "artifacts" / "gate" / "same.lasertest.yaml"
+    # The chassis grows after the run: the repro keeps the one the run drove.
+    grown = chassis.replace('size="0.6 0.4 0.2"', 'size="0.9 0.4 0.2"')
+    (project / "robot.urdf").write_text(ROBOT.replace('<link name="base_link"/>', grown))
+
+    assert_replays(original, "same", pinned, replay(original, "same", pinned, destination))
+    body = yaml.safe_load(destination.read_text())["robot"]["body"]
+    assert body["collisions"][0]["box"] == {"size": [0.6, 0.4, 0.2]}

@@ -458,6 +458,62 @@ ROBOT_CASES = {
         "body.heigth",
         "unknown key 'heigth'",
     ),
+    "a body of a height and collisions": (
+        "body: {height: 0.3}",
+        "body: {height: 0.3, collisions: [{sphere: {radius: 0.1}, xyz: [0, 0, 0.1]}]}",
+        8,
+        "body",
+        "a body is given by its height or by its collisions, not both",
+    ),
+    "a body of no collisions": (
+        "body: {height: 0.3}",
+        "body: {collisions: []}",
+        8,
+        "body.collisions",
+        "0 collision shapes: a body has from 1 to 200",
+    ),
+    "a collision of two shapes": (
+        "body: {height: 0.3}",
+        "body: {collisions: [{sphere: {radius: 0.1}, box: {size: [1, 1, 1]}, xyz: [0, 0, 1]}]}",
+        8,
+        "body.collisions[0]",
+        "a collision is one shape",
+    ),
+    "a cylinder of a negative radius": (
+        "body: {height: 0.3}",
+        "body: {collisions: [{cylinder: {radius: -0.1, length: 0.2}, xyz: [0, 0, 0.1]}]}",
+        8,
+        "body.collisions[0].cylinder.radius",
+        "-0.1 m is not above 0 m: a shape has a size",
+    ),
+    "a box of two lengths": (
+        "body: {height: 0.3}",
+        "body: {collisions: [{box: {size: [0.6, 0.4]}, xyz: [0, 0, 0.1]}]}",
+        8,
+        "body.collisions[0].box.size",
+        "expected 3 numbers in m, got 2",
+    ),
+    "a collision placed nowhere": (
+        "body: {height: 0.3}",
+        "body: {collisions: [{sphere: {radius: 0.1}}]}",
+        8,
+        "body.collisions[0].xyz",
+        "xyz is missing",
+    ),
+    "a collision 100 m from the robot": (
+        "body: {height: 0.3}",
+        "body: {collisions: [{sphere: {radius: 0.1}, xyz: [100, 0, 0.1]}]}",
+        8,
+        "body.collisions[0].xyz",
+        "[100.0, 0.0, 0.1] m lies more than 20 m from the robot's base",
+    ),
+    "a body of collisions a millimetre tall": (
+        "body: {height: 0.3}",
+        "body: {collisions: [{sphere: {radius: 0.0005}, xyz: [0, 0, 0.0005]}]}",
+        8,
+        "body",
+        "0.001 m is below 0.01 m: a body this flat is no robot",
+    ),
 }
 
 

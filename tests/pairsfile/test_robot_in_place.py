@@ -5,11 +5,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.model.body import Body
 from pytest_lasertest.model.geometry import Pose3D
-from pytest_lasertest.model.robot import Body
 from pytest_lasertest.pairsfile import PairsFile, load_pairs_file
 from tests.helpers.git import commit_everything
 from tests.helpers.runs import Case, assert_spec_error
@@ -124,13 +125,17 @@ COLLIDING = ROBOT.replace(
 WITHOUT_BODY = PAIRS.replace("  body: {height: 0.3}\n", "")
 
 
-def test_without_a_body_the_prism_is_as_high_as_the_descriptions_collision_geometry(
+def test_without_a_body_the_body_is_the_descriptions_collision_shapes_in_base_footprint(
     tmp_path: Path,
 ) -> None:
     robot = load(tmp_path, WITHOUT_BODY, COLLIDING).robot
-    assert robot.body.kind == "prism"
+    assert robot.body.kind == "description"
+    assert [c.shape for c in robot.body.collisions] == ["box", "cylinder", "box"]
+    # From the wheel's bottom on the ground to the top of the laser's box.
     assert robot.body.height == pytest.approx(0.325)
-    assert robot.body.outline == ((-0.3, -0.2), (0.3, -0.2), (0.3, 0.2), (-0.3, 0.2))
+    # The chassis, the left wheel reaching past it and the laser's box past its front.
+    extent = robot.body.extent()
+    assert extent == pytest.approx(np.array([[-0.3, -0.2], [0.325, 0.245]]), abs=1e-6)
 
 
 def test_a_wheel_on_its_side_reaches_up_by_its_radius_and_a_tall_one_by_half_its_length(
@@ -139,21 +144,23 @@ def test_a_wheel_on_its_side_reaches_up_by_its_radius_and_a_tall_one_by_half_its
     tall = COLLIDING.replace('<box size="0.6 0.4 0.2"/>', '<box size="0.6 0.4 0.01"/>').replace(
         '<box size="0.05 0.05 0.05"/>', '<box size="0.01 0.01 0.01"/>'
     )
-    on_its_side = load(tmp_path, WITHOUT_BODY, tall).robot.body.height
-    upright = load(tmp_path, WITHOUT_BODY, tall.replace('rpy="1.5708 0 0"', 'rpy="0 0 0"'))
+
+    def top(description: str) -> float:
+        return Body.top(load(tmp_path, WITHOUT_BODY, description).robot.body.collisions)
+
     # The laser's 1 cm box tops out at 0.305 m; the wheel's centre is 0.1 m up.
-    assert on_its_side == pytest.approx(0.305)
-    assert upright.robot.body.height == pytest.approx(0.305)
+    assert top(tall) == pytest.approx(0.305)
+    assert top(tall.replace('rpy="1.5708 0 0"', 'rpy="0 0 0"')) == pytest.approx(0.305)
     higher = tall.replace('length="0.05"', 'length="0.6"').replace('rpy="1.5708 0 0"', "")
-    assert load(tmp_path, WITHOUT_BODY, higher).robot.body.height == pytest.approx(0.4)
+    assert top(higher) == pytest.approx(0.4)
 
 
-def test_a_collision_mesh_gives_no_height_and_the_body_must_be_written(tmp_path: Path) -> None:
+def test_a_collision_mesh_gives_no_body_and_the_body_must_be_written(tmp_path: Path) -> None:
     meshed = COLLIDING.replace('<box size="0.6 0.4 0.2"/>', '<mesh filename="base.stl"/>')
     with pytest.raises(SpecError) as raised:
         load(tmp_path, WITHOUT_BODY, meshed)
     assert (raised.value.location.line, raised.value.field) == (1, "robot.body")
-    assert "gives no height (it holds a mesh" in raised.value.fix
+    assert "cannot be read (it holds a mesh" in raised.value.fix
 
 
 def test_a_box_of_two_lengths_is_an_error_at_its_line_in_the_description(tmp_path: Path) -> None:

@@ -1,15 +1,18 @@
 """The body a robot file names is the body that runs: a team's robot with `body: {height: H}` is a
-prism of its own footprint, not pybullet_data's Husky, moved at the commanded twist within its
+prism of its own footprint, one with `body: {collisions: [...]}` (or written around its
+description) is those shapes, not pybullet_data's Husky, moved at the commanded twist within its
 limits; and each report says which body ran."""
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from pytest_lasertest.model.geometry import Point2D, Pose2D
+from pytest_lasertest.model.body import Body, Collision
+from pytest_lasertest.model.geometry import Point2D, Pose2D, Pose3D
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 from pytest_lasertest.pairsfile.bundled import bundled_robots
@@ -36,6 +39,31 @@ def test_a_prism_body_meets_a_wall_where_its_own_footprint_does(my_bot: Robot) -
     # Its front edge, 0.3 m ahead of its origin, reaches the wall's face at 1.9 m.
     assert touched[0] == pytest.approx(WALL_FACE - 0.3, abs=0.01)
     assert abs(touched[1]) < 0.01
+
+
+# A chassis 0.6 m long centred 0.1 m behind the origin, and a bumper on stalks whose front is
+# 0.45 m ahead of it, above the footprint's 0.3 m.
+BUMPERED = (
+    Collision("box", (0.6, 0.4, 0.2), Pose3D((-0.1, 0.0, 0.1))),
+    Collision("box", (0.05, 0.5, 0.05), Pose3D((0.425, 0.0, 0.15))),
+    Collision("cylinder", (0.1, 0.05), Pose3D((0.0, 0.275, 0.1), (1.5708, 0.0, 0.0))),
+)
+
+
+def test_a_described_body_meets_a_wall_where_its_shapes_do_not_its_footprint(
+    my_bot: Robot,
+) -> None:
+    robot = dataclasses.replace(my_bot, body=Body.described(BUMPERED))
+    touched = first_touch(robot, Twist(0.5, 0.0), 8.0)
+    assert touched is not None
+    # The bumper's front, 0.45 m ahead of the origin, reaches the wall's face at 1.9 m.
+    assert touched[0] == pytest.approx(WALL_FACE - 0.45, abs=0.01)
+    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (), STEP, body=robot.body) as world:
+        low, high = world.body_bounds().min(axis=0), world.body_bounds().max(axis=0)
+    # From the chassis's back to the bumper, from the bumper's right end to the wheel's side,
+    # on the ground under its wheel (PyBullet's bounds hold a margin of a few millimetres).
+    assert low == pytest.approx([-0.4, -0.25, 0.0], abs=0.015)
+    assert high == pytest.approx([0.45, 0.3, 0.2], abs=0.015)
 
 
 def test_a_prism_moves_at_the_commanded_twist_held_to_its_limits(my_bot: Robot) -> None:
@@ -86,6 +114,11 @@ def test_each_report_names_the_body_that_ran(my_bot: Robot) -> None:
     assert robot_line(my_bot) == (
         "  robot      My bot: a prism of its footprint, 0.60 x 0.40 x 0.30 m, moved at the "
         "commanded twist"
+    )
+    described = dataclasses.replace(my_bot, body=Body.described(BUMPERED))
+    assert robot_line(described) == (
+        "  robot      My bot: its description's 3 collision shapes, 0.85 x 0.55 x 0.20 m, "
+        "moved at the commanded twist"
     )
     assert robot_line(husky) == (
         "  robot      Clearpath Husky A200: pybullet_data's Husky, driven through its wheels"

@@ -1,21 +1,101 @@
-"""Each bundled robot's simulated body against its robot file: the body PyBullet holds spans its
-footprint, meets a wall where its footprint does, and a command beyond its limits drives it at
-its top speed and turn rate."""
+"""Each bundled robot's simulated body against its description: the Jackal's and the
+TurtleBot3s' bodies are the collision shapes their descriptions hold (read from the real files
+by the gate's own reader), PyBullet's body spans them, meets a wall where they do, and a command
+beyond the robot's limits drives it at its top speed and turn rate."""
 
 from __future__ import annotations
+
+import os
+import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
 
-from pytest_lasertest.model.geometry import Pose2D
+from pytest_lasertest.descriptions.profile import read_profile
+from pytest_lasertest.model.body import Body, Collision
+from pytest_lasertest.model.geometry import Pose2D, Pose3D
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.pairsfile.bundled import bundled_robots
 from pytest_lasertest.pairsfile.robot import load_robot_file
 from pytest_lasertest.sim.client import PhysicsWorld
 from pytest_lasertest.sim.drive import Drive, Twist, drive_step
+from tests.descriptions.corpus import LMS1XX, ROBOT_ENVIRONMENT, STUBS, TURTLEBOT3
+from tests.helpers import DATA
 from tests.helpers.bodies import STEP, WALL_FACE, first_touch
 
 ROBOTS = {name: load_robot_file(path) for name, path in bundled_robots().items()}
+DESCRIBED = ("jackal", "turtlebot3_burger", "turtlebot3_waffle")
+DESCRIPTIONS = DATA / "descriptions"
+JACKAL = DESCRIPTIONS / "jackal/noetic-devel/jackal_description"
+# The packages jackal_description's accessories include whatever is fitted: stand-ins.
+JACKAL_STUBS = ("sick_tim", "velodyne_description", "pointgrey_camera_description")
+# The Jackal of robots/jackal: accessories.urdf.xacro's front Hokuyo UTM-30LX.
+JACKAL_ENVIRONMENT = {"JACKAL_LASER": "1", "JACKAL_LASER_MODEL": "utm30"}
+
+
+@pytest.fixture(scope="module")
+def turtlebot3(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """turtlebot3_description as a checkout holds it: the corpus's files, the Waffle's, and the
+    stand-in for common_properties.xacro."""
+    package = tmp_path_factory.mktemp("packages") / "turtlebot3_description"
+    waffle = DESCRIPTIONS / "turtlebot3/noetic/turtlebot3_description"
+    for source in (TURTLEBOT3, STUBS / "turtlebot3_description", waffle):
+        shutil.copytree(source, package, dirs_exist_ok=True, copy_function=shutil.copyfile)
+    return package
+
+
+@pytest.fixture
+def jackal_environment(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The robot environment robots/jackal's Jackal is described with, and no other."""
+    for name in [name for name in os.environ if name.startswith(ROBOT_ENVIRONMENT)]:
+        monkeypatch.delenv(name)
+    for name, value in JACKAL_ENVIRONMENT.items():
+        monkeypatch.setenv(name, value)
+
+
+def described(name: str, turtlebot3: Path) -> tuple[Collision, ...]:
+    """The collision shapes the robot's description holds, in base_footprint: a description
+    whose root is base_link above the ground stands on its wheels, as its robot file composes
+    base_footprint."""
+    if name == "jackal":
+        packages = {"jackal_description": JACKAL, "lms1xx": LMS1XX}
+        packages |= {stub: STUBS / stub for stub in (*JACKAL_STUBS, "flir_camera_description")}
+        path = JACKAL / "urdf/jackal.urdf.xacro"
+    else:
+        packages = {"turtlebot3_description": turtlebot3}
+        path = turtlebot3 / f"urdf/{name}.urdf.xacro"
+    read = read_profile(path, sensor=None, ref=None, args={}, packages=packages)
+    collisions = read.laser.collisions()
+    assert collisions is not None
+    ground = Body.bottom(collisions)
+    return tuple(_raised(collision, -ground) for collision in collisions)
+
+
+def _raised(collision: Collision, height: float) -> Collision:
+    x, y, z = collision.pose.xyz
+    return Collision(
+        collision.shape, collision.size, Pose3D((x, y, z + height), collision.pose.rpy)
+    )
+
+
+def _key(collision: Collision) -> tuple[str, tuple[float, ...], tuple[float, ...]]:
+    return collision.shape, collision.size, tuple(round(v, 4) for v in collision.pose.xyz)
+
+
+@pytest.mark.usefixtures("jackal_environment")
+@pytest.mark.parametrize("name", DESCRIBED)
+def test_a_bundled_robots_body_is_the_collision_shapes_of_its_description(
+    name: str, turtlebot3: Path
+) -> None:
+    body = ROBOTS[name].body
+    assert body.kind == "description"
+    bundled = sorted(body.collisions, key=_key)
+    read = sorted(described(name, turtlebot3), key=_key)
+    assert [(c.shape, c.size) for c in bundled] == [(c.shape, c.size) for c in read]
+    for ours, theirs in zip(bundled, read, strict=True):
+        assert ours.pose.xyz == pytest.approx(theirs.pose.xyz, abs=1e-5)
+        assert ours.pose.rpy == pytest.approx(theirs.pose.rpy, abs=1e-9)
 
 
 def extent(world: PhysicsWorld) -> np.ndarray:
@@ -24,10 +104,22 @@ def extent(world: PhysicsWorld) -> np.ndarray:
     return corners.max(axis=0) - corners.min(axis=0)
 
 
-def outline(robot: Robot) -> np.ndarray:
-    """The robot file's footprint as the body should have it, shape (V, 2), m: a prism's as
-    written, before footprint_padding; the Husky's as written (its padding is 0.01 m)."""
-    return np.array(robot.body.outline) if robot.body.kind == "prism" else robot.footprint_array()
+def plan_extent(robot: Robot) -> np.ndarray:
+    """The [low, high] corners (2, 2) m the body should span: its description's shapes; the
+    Husky's footprint as written (its padding is 0.01 m)."""
+    if robot.body.kind == "husky":
+        footprint = robot.footprint_array()
+        return np.array([footprint.min(axis=0), footprint.max(axis=0)])
+    return robot.body.extent()
+
+
+@pytest.mark.parametrize("name", ROBOTS)
+def test_a_bundled_robots_body_spans_its_description(name: str) -> None:
+    robot = ROBOTS[name]
+    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (), STEP, body=robot.body) as world:
+        spans = extent(world)
+    low, high = plan_extent(robot)
+    assert spans == pytest.approx(high - low, abs=0.03)
 
 
 def steady_twist(robot: Robot, command: Twist, seconds: float) -> tuple[float, float]:
@@ -42,15 +134,6 @@ def steady_twist(robot: Robot, command: Twist, seconds: float) -> tuple[float, f
 
 
 @pytest.mark.parametrize("name", ROBOTS)
-def test_a_bundled_robots_body_spans_its_footprint(name: str) -> None:
-    robot = ROBOTS[name]
-    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (), STEP, body=robot.body) as world:
-        spans = extent(world)
-    footprint = outline(robot)
-    assert spans == pytest.approx(footprint.max(axis=0) - footprint.min(axis=0), abs=0.03)
-
-
-@pytest.mark.parametrize("name", ROBOTS)
 def test_a_bundled_robot_drives_at_its_top_speed_and_no_faster(name: str) -> None:
     robot = ROBOTS[name]
     linear, _ = steady_twist(robot, Twist(50.0, 0.0), 4.0)
@@ -60,9 +143,9 @@ def test_a_bundled_robot_drives_at_its_top_speed_and_no_faster(name: str) -> Non
 
 
 @pytest.mark.parametrize("name", ROBOTS)
-def test_a_bundled_robot_meets_a_wall_where_its_footprint_does(name: str) -> None:
+def test_a_bundled_robot_meets_a_wall_where_its_body_does(name: str) -> None:
     robot = ROBOTS[name]
     touched = first_touch(robot, Twist(min(0.5, robot.max_linear_velocity), 0.0), 15.0)
     assert touched is not None
-    front = outline(robot)[:, 0].max()  # m ahead of base_footprint
+    front = plan_extent(robot)[1, 0]  # m ahead of base_footprint
     assert touched[0] == pytest.approx(WALL_FACE - front, abs=0.02)
