@@ -3,7 +3,7 @@
 Each robot run drives the Husky with the paper's 720-beam, 50 Hz scanner and a controller (the
 Husky's move_base by default, Nav2 with Jazzy's nav2_params.yaml, or the reactive reference)
 for 30 s of simulated time, in an empty world, past one obstacle beside its route (as a
-placement item drives) or past four; and down the warehouse aisle of tests/data/worlds (a
+placement item drives) or past four; and down the warehouse aisle of examples/worlds (a
 map_server map: two racks of shelving either side of a 1.6 m aisle, ending at the bay's wall),
 beside the same route in an empty world, to the aisle's far end.
 Right after each run, the same world (robot, ground, obstacles) is stepped bare through the
@@ -41,7 +41,7 @@ from pytest_lasertest.sim.scenario import Scenario, run_scenario
 
 REPO = Path(__file__).resolve().parent.parent
 PAPER = load_pairs_file(REPO / "examples" / "paper.lasertest.yaml")
-AISLE = load_pairs_file(REPO / "tests" / "data" / "worlds" / "aisle.lasertest.yaml").world
+AISLE = load_pairs_file(REPO / "examples" / "worlds" / "aisle.lasertest.yaml").world
 SCANNER = next(pair for pair in PAPER.pairs if pair.name == "distance").baseline.profile
 SIMULATED = 30.0  # s per run
 CONTROLLERS: dict[str, ControllerFactory] = {

@@ -20,5 +20,5 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = REPO / "examples"
 DATA = REPO / "tests" / "data"
-# The worlds with walls (maps of a doorway and an aisle) that tests drive and plan in.
-WORLDS = DATA / "worlds"
+# The example worlds with walls (maps of a doorway and an aisle) that tests drive and plan in.
+WORLDS = EXAMPLES / "worlds"

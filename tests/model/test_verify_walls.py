@@ -1,6 +1,6 @@
 """Walls in the verifier and the solver (issue 25): a scanner reads nothing behind a wall, so a
 witness "read" through one is refused, no obstacle may stand in one, and the solver's witnesses
-in the aisle world (tests/data/worlds/aisle.lasertest.yaml: two racks of shelving either side
+in the aisle world (examples/worlds/aisle.lasertest.yaml: two racks of shelving either side
 of a 1.6 m aisle) are read past the racks, never through them."""
 
 from __future__ import annotations

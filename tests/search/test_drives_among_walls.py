@@ -1,5 +1,5 @@
 """A pair's control run in a world with walls (issue 25): the Jackal of
-tests/data/worlds/doorway.lasertest.yaml, given only a goal in the next room, drives through the
+examples/worlds/doorway.lasertest.yaml, given only a goal in the next room, drives through the
 1.2 m doorway with either scanner, as the gate's `PAIR[no-obstacle]` item drives it."""
 
 from __future__ import annotations
