@@ -57,7 +57,9 @@ def read_body(node: SpecNode, footprint: tuple[tuple[float, float], ...]) -> Bod
             raise node.error(f"{node.value!r} is not a body the simulator has", BODY_FIX)
         return HUSKY_BODY
     fields = node.mapping(("height", "collisions"), what="body fields")
-    if len(fields) != 1:
+    if not fields:
+        raise node.missing("height", BODY_FIX)
+    if len(fields) > 1:
         raise node.error("a body is given by its height or by its collisions, not both", BODY_FIX)
     if "height" in fields:
         return Body("prism", footprint, fields["height"].number_in(BODY_HEIGHT))

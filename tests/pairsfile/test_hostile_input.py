@@ -465,6 +465,13 @@ ROBOT_CASES = {
         "body",
         "a body is given by its height or by its collisions, not both",
     ),
+    "a body of nothing": (
+        "body: {height: 0.3}",
+        "body: {}",
+        8,
+        "body.height",
+        "height is missing",
+    ),
     "a body of no collisions": (
         "body: {height: 0.3}",
         "body: {collisions: []}",
