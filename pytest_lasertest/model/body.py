@@ -103,7 +103,8 @@ class Body:
         """`pybullet_data's Husky, driven through its wheels`, or the body's size and kind."""
         if self.kind == "husky":
             return "pybullet_data's Husky, driven through its wheels"
-        length, width = self.extent()[1] - self.extent()[0]
+        low, high = self.extent()
+        length, width = high - low
         size = f"{length:.2f} x {width:.2f} x {self.height:.2f} m"
         if self.kind == "prism":
             return f"a prism of its footprint, {size}, moved at the commanded twist"

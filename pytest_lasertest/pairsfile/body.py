@@ -36,8 +36,9 @@ LENGTH = Bounds(
     "no part of a wheeled robot is 5 m across",
     above_low=True,
 )
-# m: as far as a footprint's corner may lie from the base (robot.py's MAX_FOOTPRINT_REACH).
-REACH = 20.0
+# The largest mobile robots are a few metres across; costmaps rasterise the footprint in cells.
+# As far as a footprint's corner or a collision shape may lie from the base.
+MAX_FOOTPRINT_REACH = 20.0  # m
 MAX_COLLISIONS = 200  # a description has a few dozen links; PyBullet tests each shape per step
 BODY_FIX = (
     "write `body: husky` (pybullet_data's Husky, driven through its wheels), "
@@ -98,9 +99,10 @@ def _collision(node: SpecNode) -> Collision:
     if "xyz" not in fields:
         raise node.missing("xyz", SHAPE_FIX)
     xyz = fields["xyz"].triple("m")
-    if float(np.abs(xyz).max()) > REACH:
+    if float(np.abs(xyz).max()) > MAX_FOOTPRINT_REACH:
         raise fields["xyz"].error(
-            f"{list(xyz)} m lies more than {REACH:g} m from the robot's base", SHAPE_FIX
+            f"{list(xyz)} m lies more than {MAX_FOOTPRINT_REACH:g} m from the robot's base",
+            SHAPE_FIX,
         )
     rpy = fields["rpy"].triple("rad") if "rpy" in fields else (0.0, 0.0, 0.0)
     return Collision(kinds[0], _size(fields[kinds[0]], kinds[0]), Pose3D(xyz, rpy))

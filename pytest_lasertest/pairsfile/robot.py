@@ -20,7 +20,7 @@ from pytest_lasertest.model.body import Body
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import Robot, pad_footprint
 from pytest_lasertest.model.scanner_limits import ProfileError, check_mount
-from pytest_lasertest.pairsfile.body import BODY_FIX, described_body, read_body
+from pytest_lasertest.pairsfile.body import BODY_FIX, MAX_FOOTPRINT_REACH, described_body, read_body
 from pytest_lasertest.pairsfile.bundled import ROBOT_FILE, bundled_robots
 from pytest_lasertest.pairsfile.described import (
     DESCRIPTION_KEYS,
@@ -106,8 +106,6 @@ REACTION_TIME = Bounds(
 PADDING = Bounds(
     0.0, 1.0, "m", "costmap_2d pads a footprint outward", "padding is a few centimetres"
 )  # (0.01)
-# The largest mobile robots are a few metres across; costmaps rasterise the footprint in cells.
-MAX_FOOTPRINT_REACH = 20.0  # m
 MAX_CORNERS = 100  # costmap_2d footprints have 4 to a few dozen corners
 
 

@@ -18,6 +18,7 @@ import numpy as np
 from pytest_lasertest.model.body import HUSKY_BODY, Body
 from pytest_lasertest.model.geometry import FloatArray, Pose2D
 from pytest_lasertest.model.obstacles import Box, Obstacle
+from pytest_lasertest.sim.bodies import DROP_HEIGHT, sliding_body
 
 # PyBullet's table of physics clients: ids run from 0 to this, and are reused once disconnected.
 MAX_CLIENTS = 1024
@@ -29,9 +30,6 @@ HUSKY_URDF = "husky/husky.urdf"
 # pybullet_data's Husky: its four wheel joints, left then right.
 LEFT_WHEELS, RIGHT_WHEELS = (1, 3), (0, 2)
 WHEELS = (*LEFT_WHEELS, *RIGHT_WHEELS)
-# The Husky's base_footprint rests this close to the ground on its wheels: placed there, it
-# starts at rest instead of falling onto them.
-DROP_HEIGHT = 0.0005  # m
 GRAVITY = 9.81  # m/s^2
 WHEEL_TORQUE = 1000.0  # N m, more than the wheels ever need: the velocity target rules
 WHEEL_TORQUES = (WHEEL_TORQUE,) * len(WHEELS)
@@ -39,11 +37,6 @@ WHEEL_TORQUES = (WHEEL_TORQUE,) * len(WHEELS)
 # grip so hard that the turn rate jumps with the wheel speeds (0.4 rad/s for 0.25 commanded, 2.3
 # for 1.0); friction along the axle scaled by this factor lets them slide and the rate follow.
 TYRE_SIDEWAYS_FRICTION = 0.05
-# A sliding body (a description's or a prism): its mass only sets how hard it pushes what it
-# meets (the Husky's base, about).
-PRISM_MASS = 50.0  # kg
-# Inertia about its roll and pitch axes, so large that a push low or high does not tip it.
-UNTIPPABLE = 1.0e6  # kg m^2
 
 
 def load_pybullet() -> ModuleType:
@@ -114,12 +107,8 @@ class PhysicsWorld:
                 self._pybullet.resetSimulation(physicsClientId=self._client)
             self._setup(time_step)
             self.body = body
-            loaders = {
-                "husky": self._load_husky,
-                "description": self._load_described,
-                "prism": self._load_prism,
-            }
-            self.robot = loaders[body.kind](start)
+            husky = body.kind == "husky"
+            self.robot = self._load_husky(start) if husky else self._load_sliding(start)
             self.obstacles = tuple(self._add_obstacle(obstacle) for obstacle in obstacles)
             self._circles = [(o.x, o.y, o.bounding_radius) for o in obstacles]
             self._reach = self._robot_reach(start)
@@ -269,64 +258,9 @@ class PhysicsWorld:
             )
         return robot
 
-    def _load_prism(self, start: Pose2D) -> int:
-        """The footprint raised to the body's height, its base frame on the ground under its
-        origin, sliding without friction."""
-        pybullet, body = self._pybullet, self.body
-        corners = [(x, y, z) for z in (0.0, body.height) for x, y in body.outline]
-        shape = pybullet.createCollisionShape(
-            pybullet.GEOM_MESH, vertices=corners, physicsClientId=self._client
-        )
-        return self._slider(shape, start, 0.0)
-
-    def _load_described(self, start: Pose2D) -> int:
-        """The description's collision shapes as one rigid body standing on the lowest of them,
-        sliding without friction."""
-        pybullet, collisions = self._pybullet, self.body.collisions
-        geometries = {
-            "box": pybullet.GEOM_BOX,
-            "cylinder": pybullet.GEOM_CYLINDER,
-            "sphere": pybullet.GEOM_SPHERE,
-        }
-        shape = pybullet.createCollisionShapeArray(
-            shapeTypes=[geometries[c.shape] for c in collisions],
-            radii=[c.size[0] if c.shape != "box" else 0.0 for c in collisions],
-            halfExtents=[
-                [length / 2.0 for length in c.size] if c.shape == "box" else [0.0] * 3
-                for c in collisions
-            ],
-            lengths=[c.size[1] if c.shape == "cylinder" else 0.0 for c in collisions],
-            collisionFramePositions=[c.pose.xyz for c in collisions],
-            collisionFrameOrientations=[
-                pybullet.getQuaternionFromEuler(c.pose.rpy) for c in collisions
-            ],
-            physicsClientId=self._client,
-        )
-        # A description whose base frame is not on the ground (the Jackal's base_link) stands
-        # on its wheels all the same.
-        return self._slider(shape, start, Body.bottom(collisions))
-
-    def _slider(self, shape: int, start: Pose2D, bottom: float) -> int:
-        """A body of `shape` whose lowest point is `bottom` m above its base frame, dropped onto
-        the ground at `start`: its mass over its base origin, so that it turns on the spot
-        about it, no friction, and too stiff to tip."""
-        pybullet, client, body = self._pybullet, self._client, self.body
-        robot: int = pybullet.createMultiBody(
-            baseMass=PRISM_MASS,
-            baseCollisionShapeIndex=shape,
-            basePosition=(start.x, start.y, DROP_HEIGHT - bottom),
-            baseOrientation=pybullet.getQuaternionFromEuler((0.0, 0.0, start.yaw)),
-            baseInertialFramePosition=(0.0, 0.0, bottom + body.height / 2.0),
-            physicsClientId=client,
-        )
-        twist_inertia = pybullet.getDynamicsInfo(robot, -1, physicsClientId=client)[2][2]
-        pybullet.changeDynamics(
-            robot,
-            -1,
-            lateralFriction=0.0,
-            localInertiaDiagonal=(UNTIPPABLE, UNTIPPABLE, twist_inertia),
-            physicsClientId=client,
-        )
+    def _load_sliding(self, start: Pose2D) -> int:
+        """A description's shapes or a prism, sliding at the commanded twist (`bodies.py`)."""
+        robot = sliding_body(self._pybullet, self._client, self.body, start)
         self._join(robot, ROBOT_GROUP)
         return robot
 

@@ -57,6 +57,11 @@ class Poses:
     scale: FloatArray  # (P,)
     groups: int
 
+    @property
+    def per_group(self) -> int:
+        """How many poses each group holds."""
+        return len(self.x) // self.groups
+
 
 @dataclass(frozen=True)
 class _Frames:
@@ -88,7 +93,7 @@ def least_gaps(edges: Edges, poses: Poses, lethal: FloatArray, side: float) -> F
     cell centre (N, 2), shape (G,); the cells grouped in squares of `side` m to skip those that
     cannot be nearest."""
     pose = _distinct(poses)
-    starts = np.searchsorted(pose, np.arange(poses.groups) * (len(poses.x) // poses.groups))
+    starts = np.searchsorted(pose, np.arange(poses.groups) * poses.per_group)
     frames = _frames(edges, poses, pose)
     if len(lethal) <= DIRECT_CELLS:
         direct = _signed(edges, frames, lethal[np.newaxis]).min(axis=1)
@@ -109,7 +114,8 @@ def _distinct(poses: Poses) -> IntArray:
     """The poses (K,) that are not the pose before them in their group: a rollout that ends
     before the longest stays at its last pose, and measuring it again changes no least."""
     same = (np.diff(poses.x) == 0.0) & (np.diff(poses.y) == 0.0) & (np.diff(poses.yaw) == 0.0)
-    same[len(poses.x) // poses.groups - 1 :: len(poses.x) // poses.groups] = False
+    # A group's first pose is no repeat of the group before's last.
+    same[poses.per_group - 1 :: poses.per_group] = False
     distinct: IntArray = np.flatnonzero(np.r_[True, ~same])
     return distinct
 
