@@ -5,22 +5,28 @@ Each link's `<collision>` is placed by the link's pose in the base frame (`mount
 every joint at zero) and the collision's `<origin>`, as urdfdom composes them. Boxes, cylinders
 (their axis their own z) and spheres are read as they are. A mesh's extent is in its file, which
 the gate does not read: a description with a collision mesh gives no body.
+
+A cylinder on a link that a `continuous` joint turns, its axis along the base's y, is a wheel:
+the simulator drives the body through such wheels, as gazebo_ros's diff_drive plugin drives the
+joints it is given (`sim/bodies.py`). When the wheels cannot drive the body (all on one side, or
+off the ground), the body slides at the commanded twist instead, and says so.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 from pytest_lasertest.descriptions.laser_block import Locate
-from pytest_lasertest.descriptions.mounts import link_poses, urdf_origin
+from pytest_lasertest.descriptions.mounts import link_poses, spinning_links, urdf_origin
 from pytest_lasertest.descriptions.xmlfile import XmlElement
-from pytest_lasertest.model.body import SHAPES, Collision
+from pytest_lasertest.model.body import SHAPES, Body, Collision
 
 
 def collisions(robot: XmlElement, base: str, locate: Locate) -> tuple[Collision, ...] | None:
     """Every collision of the links joined to `base`, in its frame; None when one is a mesh (or
     of a shape URDF does not define), or there is none."""
-    poses = link_poses(robot, base, locate)
+    poses, spinning = link_poses(robot, base, locate), spinning_links(robot, locate)
     placed = []
     for link in robot.all("link"):
         pose = poses.get(link.get("name") or "")
@@ -34,7 +40,13 @@ def collisions(robot: XmlElement, base: str, locate: Locate) -> tuple[Collision,
                 return None
             origin = pose.then(urdf_origin(collision, locate))
             placed.append(Collision(kind, _size(shape, locate), origin))
-    return tuple(placed) or None
+            if link.get("name") in spinning and placed[-1].axle_fault() is None:
+                placed[-1] = dataclasses.replace(placed[-1], wheel=True)
+    if not placed:
+        return None
+    if Body.described(tuple(placed)).wheel_fault() is not None:
+        return tuple(dataclasses.replace(c, wheel=False) for c in placed)
+    return tuple(placed)
 
 
 def _size(shape: XmlElement, locate: Locate) -> tuple[float, ...]:

@@ -66,6 +66,13 @@ def link_poses(robot: XmlElement, base: str, locate: Locate) -> dict[str, Pose3D
     return poses
 
 
+def spinning_links(robot: XmlElement, locate: Locate) -> set[str]:
+    """The links a `continuous` joint turns without limit: a wheel's, say."""
+    links = {element.get("name") for element in robot.all("link")}
+    joints = _joints(robot, links, locate)
+    return {link for link, joint in joints.items() if joint.element.get("type") == "continuous"}
+
+
 @dataclass(frozen=True)
 class _Joint:
     parent: str

@@ -72,6 +72,15 @@ class SpecNode:
             raise self.error(f"expected {what}, got {describe(self.value)}", fix)
         return self.value
 
+    def truth(self) -> bool:
+        """This value as true or false."""
+        if not isinstance(self.value, bool):
+            raise self.error(
+                f"{self.field.rsplit('.', 1)[-1]} is true or false, not {describe(self.value)}",
+                "write true or false",
+            )
+        return self.value
+
     def number(self, unit: str) -> float:
         """This value as a finite real number in `unit`."""
         value = self.value

@@ -1,6 +1,6 @@
 """The body the simulator drives: pybullet_data's Husky through its wheels, the collision geometry
-of the robot's own description, or a prism of its footprint; the last two moved at the commanded
-twist."""
+of the robot's own description (through its wheel joints when it has them), or a prism of its
+footprint; a body without wheels is moved at the commanded twist."""
 
 from __future__ import annotations
 
@@ -21,6 +21,12 @@ SHAPE_SIZES: dict[Shape, tuple[str, ...]] = {
     "cylinder": ("radius", "length"),
     "sphere": ("radius",),
 }
+# How far a wheel's axle may lean from the base's y axis: a wheel rolls forward, and the
+# descriptions' -1.57 rad for -pi/2 leaves 0.0008 rad.
+WHEEL_AXLE_TOLERANCE = math.radians(5.0)  # rad
+# How far above the body's lowest point a wheel's may be and still bear on the ground (a caster
+# box, say, reaching a little lower).
+WHEEL_GROUND_TOLERANCE = 0.005  # m
 
 
 @dataclass(frozen=True)
@@ -31,6 +37,25 @@ class Collision:
     shape: Shape
     size: tuple[float, ...]  # m: a box's x, y, z lengths; a cylinder's radius, length; a radius
     pose: Pose3D  # its centre and axes in base_footprint
+    wheel: bool = False  # a cylinder driven about its own axis, by a continuous joint
+
+    def axle(self) -> FloatArray:
+        """The shape's own z axis in base_footprint, shape (3,): a cylinder's axis."""
+        axis: FloatArray = self.pose.rotation()[:, 2]
+        return axis
+
+    def axle_fault(self) -> str | None:
+        """Why this shape cannot be a wheel the base rolls on, or None when it can."""
+        if self.shape != "cylinder":
+            return f"a {self.shape} does not roll: a wheel is a cylinder"
+        if abs(float(self.axle()[1])) < math.cos(WHEEL_AXLE_TOLERANCE):
+            return (
+                "its axis does not lie along the base's y axis (a wheel rolls forward): turn "
+                "it with rpy, as a URDF wheel is, e.g. [-1.57, 0, 0]"
+            )
+        if abs(self.pose.xyz[1]) < self.size[1] / 2.0:
+            return "it straddles the base's x axis: a wheel drives the left or the right side"
+        return None
 
     def corners(self) -> FloatArray:
         """The corners of the box around the shape, in base_footprint, shape (8, 3), m: exact
@@ -60,8 +85,8 @@ class Collision:
 @dataclass(frozen=True)
 class Body:
     """What the simulator drives: pybullet_data's Husky through its wheels; its description's
-    collisions as one rigid body; or a prism of its footprint. The last two slide on the ground
-    at the commanded twist."""
+    collisions, through its wheels when it names them and as one rigid body otherwise; or a
+    prism of its footprint. A body without wheels slides on the ground at the commanded twist."""
 
     kind: Literal["husky", "description", "prism"]
     outline: tuple[tuple[float, float], ...] = ()  # m, the prism's footprint, unpadded
@@ -77,6 +102,23 @@ class Body:
             collisions=collisions,
         )
 
+    def wheel_fault(self) -> str | None:
+        """Why the wheels cannot drive the body, or None when they can (or it has none)."""
+        wheels = self.wheels
+        if wheels and not (
+            any(w.pose.xyz[1] > 0.0 for w in wheels) and any(w.pose.xyz[1] < 0.0 for w in wheels)
+        ):
+            return "a body drives on wheels both left (y > 0) and right (y < 0) of its base"
+        lowest = self.bottom(self.collisions)
+        for wheel in wheels:
+            above = wheel.pose.xyz[2] - wheel.vertical_reach() - lowest
+            if above > WHEEL_GROUND_TOLERANCE:
+                return (
+                    f"the wheel at y = {wheel.pose.xyz[1]:g} m stops {above:.3f} m above the "
+                    "body's lowest point: it would not touch the ground"
+                )
+        return None
+
     @staticmethod
     def top(collisions: tuple[Collision, ...]) -> float:
         """The highest point of the shapes above their base frame (m)."""
@@ -87,6 +129,27 @@ class Body:
         """The lowest point of the shapes above their base frame (m): 0 where the frame is
         base_footprint, below it where the frame is a base_link above the ground."""
         return min(c.pose.xyz[2] - c.vertical_reach() for c in collisions)
+
+    @property
+    def wheels(self) -> tuple[Collision, ...]:
+        """The description's wheels, each driven about its own axis; none for the others."""
+        return tuple(c for c in self.collisions if c.wheel)
+
+    @property
+    def steering(self) -> str:
+        """How it turns: `differential` with one wheel a side, `skid-steer` with more, or
+        `moved at the commanded twist` without wheels."""
+        if not self.wheels:
+            return "moved at the commanded twist"
+        return "differential" if len(self.wheels) == 2 else "skid-steer"
+
+    def track(self) -> tuple[float, float]:
+        """The wheels' radius and the distance between the left and the right ones (m, m),
+        each the mean of its side's."""
+        left = [w for w in self.wheels if w.pose.xyz[1] > 0.0]
+        right = [w for w in self.wheels if w.pose.xyz[1] < 0.0]
+        radius = sum(w.size[0] for w in self.wheels) / len(self.wheels)
+        return radius, _mean_y(left) - _mean_y(right)
 
     def extent(self) -> FloatArray:
         """The body's [low, high] corners in base_footprint's plane, shape (2, 2), m; the
@@ -108,10 +171,14 @@ class Body:
         size = f"{length:.2f} x {width:.2f} x {self.height:.2f} m"
         if self.kind == "prism":
             return f"a prism of its footprint, {size}, moved at the commanded twist"
-        return (
-            f"its description's {len(self.collisions)} collision shapes, {size}, moved at the "
-            "commanded twist"
-        )
+        shapes = f"its description's {len(self.collisions)} collision shapes, {size}"
+        if not self.wheels:
+            return f"{shapes}, moved at the commanded twist"
+        return f"{shapes}, driven through its {len(self.wheels)} wheel joints ({self.steering})"
+
+
+def _mean_y(wheels: list[Collision]) -> float:
+    return sum(w.pose.xyz[1] for w in wheels) / len(wheels)
 
 
 HUSKY_BODY = Body("husky")

@@ -9,9 +9,15 @@ pins them), or a prism of its footprint (`height:`).
         - cylinder: {radius: 0.033, length: 0.018}
           xyz: [0.0, 0.08, 0.033]
           rpy: [-1.57, 0.0, 0.0]             # rad; 0 0 0 when left out
+          wheel: true                        # driven about its axis; false when left out
+
+A body with wheels, left and right, is driven through them; one without slides at the
+commanded twist.
 """
 
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 
@@ -42,12 +48,19 @@ MAX_FOOTPRINT_REACH = 20.0  # m
 MAX_COLLISIONS = 200  # a description has a few dozen links; PyBullet tests each shape per step
 BODY_FIX = (
     "write `body: husky` (pybullet_data's Husky, driven through its wheels), "
-    "`body: {collisions: [...]}` (its description's collision shapes) or `body: {height: H}` "
-    "(a prism of the footprint, H m high); the last two are moved at the commanded twist"
+    "`body: {collisions: [...]}` (its description's collision shapes, driven through those "
+    "marked `wheel: true`) or `body: {height: H}` (a prism of the footprint, H m high, moved "
+    "at the commanded twist)"
 )
 SHAPE_FIX = (
     "write one of `box: {size: [x, y, z]}`, `cylinder: {radius: R, length: L}` or "
-    "`sphere: {radius: R}` (m), with `xyz: [x, y, z]` and optionally `rpy: [r, p, y]`"
+    "`sphere: {radius: R}` (m), with `xyz: [x, y, z]` and optionally `rpy: [r, p, y]` and "
+    "`wheel: true`"
+)
+WHEEL_FIX = (
+    "mark `wheel: true` on the cylinders the base rolls on, one or more each side, each turned "
+    "so that its axis lies along y (rpy [-1.57, 0, 0]); leave it out of every shape for a body "
+    "moved at the commanded twist"
 )
 
 
@@ -69,7 +82,11 @@ def read_body(node: SpecNode, footprint: tuple[tuple[float, float], ...]) -> Bod
         raise fields["collisions"].error(
             f"{len(shapes)} collision shapes: a body has from 1 to {MAX_COLLISIONS}", SHAPE_FIX
         )
-    return checked(node, tuple(_collision(shape) for shape in shapes))
+    body = checked(node, tuple(_collision(shape) for shape in shapes))
+    fault = body.wheel_fault()
+    if fault is not None:
+        raise fields["collisions"].error(fault, WHEEL_FIX)
+    return body
 
 
 def described_body(node: SpecNode, file_node: SpecNode, laser: DescribedLaser) -> Body:
@@ -92,7 +109,9 @@ def checked(node: SpecNode, collisions: tuple[Collision, ...]) -> Body:
 
 
 def _collision(node: SpecNode) -> Collision:
-    fields = node.mapping(("box", "cylinder", "sphere", "xyz", "rpy"), what="collision fields")
+    fields = node.mapping(
+        ("box", "cylinder", "sphere", "xyz", "rpy", "wheel"), what="collision fields"
+    )
     kinds = [SHAPES[key] for key in fields if key in SHAPES]
     if len(kinds) != 1:
         raise node.error("a collision is one shape", SHAPE_FIX)
@@ -105,7 +124,13 @@ def _collision(node: SpecNode) -> Collision:
             SHAPE_FIX,
         )
     rpy = fields["rpy"].triple("rad") if "rpy" in fields else (0.0, 0.0, 0.0)
-    return Collision(kinds[0], _size(fields[kinds[0]], kinds[0]), Pose3D(xyz, rpy))
+    collision = Collision(kinds[0], _size(fields[kinds[0]], kinds[0]), Pose3D(xyz, rpy))
+    if "wheel" not in fields or not fields["wheel"].truth():
+        return collision
+    fault = collision.axle_fault()
+    if fault is not None:
+        raise fields["wheel"].error(f"this shape cannot be a wheel: {fault}", WHEEL_FIX)
+    return dataclasses.replace(collision, wheel=True)
 
 
 def _size(node: SpecNode, shape: Shape) -> tuple[float, ...]:
@@ -140,8 +165,9 @@ def _written(collision: Collision) -> dict[str, object]:
         else dict(zip(SHAPE_SIZES[collision.shape], size, strict=True))
     )
     pose = collision.pose
-    return {
+    written: dict[str, object] = {
         collision.shape: shape,
         "xyz": [float(value) for value in pose.xyz],
         "rpy": [float(value) for value in pose.rpy],
     }
+    return written | ({"wheel": True} if collision.wheel else {})

@@ -1,18 +1,20 @@
-"""The drive: a commanded twist, limited as the Husky's velocity controller limits it, turned
-into wheel speeds that reach it on PyBullet's skid-steer contact (or, for a body without wheels,
-driven as it is).
+"""The drive: a commanded twist, limited as the robot's velocity controller limits it, turned
+into wheel speeds that reach it on PyBullet's contact (or, for a body without wheels, driven as
+it is).
 
 The Husky steers by driving its left and right wheels at different speeds and letting the tyres
 slide sideways. Wheel speeds from the URDF's geometry miss the commanded twist (8 % too fast
 straight ahead; turns slip), so the drive uses an effective radius and track, measured in
 PyBullet, and closes a slow integral loop on the measured twist to remove what remains, as the
-robot's own odometry-fed controller would.
+robot's own odometry-fed controller would. A description's wheels start from their own radius and
+track, as gazebo_ros's diff_drive plugin takes them, and the same loop closes on what slips.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+from pytest_lasertest.model.body import Body
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.sim.client import PhysicsWorld
 
@@ -40,13 +42,23 @@ class WheelGeometry:
 HUSKY_WHEELS = WheelGeometry(radius=0.1651 * 1.0808, track=0.62, gain=3.0)
 
 
+def wheel_geometry(body: Body) -> WheelGeometry | None:
+    """How the body's wheels turn into a twist; None for a body without wheels."""
+    if body.kind == "husky":
+        return HUSKY_WHEELS
+    if not body.wheels:
+        return None
+    radius, track = body.track()
+    return WheelGeometry(radius, track, HUSKY_WHEELS.gain)
+
+
 class Drive:
     """The twist the wheels are driven toward, ramped within the robot's limits, and the
     integral of what the measured twist lacked."""
 
-    def __init__(self, robot: Robot, wheels: WheelGeometry = HUSKY_WHEELS) -> None:
+    def __init__(self, robot: Robot) -> None:
         self.robot = robot
-        self.wheels = wheels
+        self.wheels = wheel_geometry(robot.body)
         # Plain floats, not Twists: the drive runs at every physics step.
         self._target = (0.0, 0.0)  # m/s, rad/s
         self._correction = (0.0, 0.0)  # m/s, rad/s
@@ -59,6 +71,8 @@ class Drive:
 
     def wheel_speeds(self, command: Twist, measured: Twist, step: float) -> tuple[float, float]:
         """Left and right wheel speeds (rad/s) for the next `step` seconds."""
+        if self.wheels is None:
+            raise ValueError(f"{self.robot.body.describe()} has no wheels to drive")
         limited = self._ramp(command, step)
         linear, angular = self._target
         # Only a steady error is the loop's to remove: while the target ramps, the robot lags it
@@ -95,8 +109,8 @@ def drive_step(
     world: PhysicsWorld, drive: Drive, command: Twist, measured: Twist, yaw: float, step: float
 ) -> tuple[float, float]:
     """Step `world` once with its body driven toward `command`, heading `yaw` (rad); what drove
-    it: the Husky's wheel speeds (rad/s), or the twist a sliding body moved at (m/s, rad/s)."""
-    if world.body.kind == "husky":
+    it: the wheel speeds (rad/s), or the twist a body without wheels moved at (m/s, rad/s)."""
+    if drive.wheels is not None:
         left, right = drive.wheel_speeds(command, measured, step)
         world.step(left, right)
         return left, right

@@ -83,8 +83,8 @@ class Run:
     times: FloatArray  # (T,) s, at the end of each step
     poses: FloatArray  # (T, 3) base_footprint [x, y, yaw], m, m, rad
     commands: FloatArray  # (T, 2) the command being driven [forward m/s, turn rad/s]
-    # (T, 2) what drove the body: the Husky's wheel speeds [left, right] (rad/s), or the
-    # twist a sliding body moved at [forward m/s, turn rad/s]
+    # (T, 2) what drove the body: its wheel speeds [left, right] (rad/s), or the twist a
+    # body without wheels moved at [forward m/s, turn rad/s]
     driven: FloatArray
     scans: int  # how many scans the controller was given
     verdicts: Verdicts

@@ -453,13 +453,20 @@ def test_a_body_read_from_the_description_replays_as_read_after_the_description_
     tmp_path: Path,
 ) -> None:
     project = tmp_path / "project"
+    wheels = "".join(
+        f'<link name="{side}"><collision><origin rpy="1.5708 0 0"/>'
+        '<geometry><cylinder radius="0.1" length="0.05"/></geometry></collision></link>'
+        f'<joint name="{side}_joint" type="continuous"><parent link="base_link"/>'
+        f'<child link="{side}"/><origin xyz="0 {y} 0"/></joint>'
+        for side, y in (("left", 0.25), ("right", -0.25))
+    )
     chassis = (
         '<link name="base_link"><collision><origin xyz="0 0 0.1"/>'
         '<geometry><box size="0.6 0.4 0.2"/></geometry></collision></link>'
-    )
+    ) + wheels
     write(project, ROBOT.replace('<link name="base_link"/>', chassis), "robot.urdf")
     original = load_pairs_file(write(project, VALID_PAIRS.replace("robot: husky\n", IN_PLACE)))
-    assert original.robot.body.kind == "description"
+    assert original.robot.body.steering == "differential"
     pinned = pinned_for(pair_named(original, "same"))
     destination = tmp_path / "artifacts" / "gate" / "same.lasertest.yaml"
     # The chassis grows after the run: the repro keeps the one the run drove.
@@ -469,3 +476,5 @@ def test_a_body_read_from_the_description_replays_as_read_after_the_description_
     assert_replays(original, "same", pinned, replay(original, "same", pinned, destination))
     body = yaml.safe_load(destination.read_text())["robot"]["body"]
     assert body["collisions"][0]["box"] == {"size": [0.6, 0.4, 0.2]}
+    # It rolls on the wheels it rolled on.
+    assert [c.get("wheel", False) for c in body["collisions"]] == [False, True, True]

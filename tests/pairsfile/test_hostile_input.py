@@ -372,6 +372,9 @@ def test_every_numeric_navigation_parameter_has_bounds_its_defaults_and_the_husk
             assert limit.low <= getattr(getattr(defaults, section), name) <= limit.high, name
 
 
+# A wheel's cylinder, and the turn and mark that make it one.
+WHEEL = "cylinder: {radius: 0.1, length: 0.05}"
+SIDEWAYS = "rpy: [-1.57, 0, 0], wheel: true"
 ROBOT_CASES = {
     "a top speed of 1 km/s": (
         "max_linear_velocity: 0.8",
@@ -520,6 +523,51 @@ ROBOT_CASES = {
         8,
         "body",
         "0.001 m is below 0.01 m: a body this flat is no robot",
+    ),
+    "a box for a wheel": (
+        "body: {height: 0.3}",
+        "body: {collisions: [{box: {size: [0.1, 0.1, 0.1]}, xyz: [0, 0.2, 0.05], wheel: true}]}",
+        8,
+        "body.collisions[0].wheel",
+        "this shape cannot be a wheel: a box does not roll: a wheel is a cylinder",
+    ),
+    "a wheel lying flat": (
+        "body: {height: 0.3}",
+        f"body: {{collisions: [{{{WHEEL}, xyz: [0, 0.2, 0.1], wheel: true}}]}}",
+        8,
+        "body.collisions[0].wheel",
+        "its axis does not lie along the base's y axis (a wheel rolls forward)",
+    ),
+    "a wheel astride the base": (
+        "body: {height: 0.3}",
+        f"body: {{collisions: [{{{WHEEL}, xyz: [0, 0, 0.1], {SIDEWAYS}}}]}}",
+        8,
+        "body.collisions[0].wheel",
+        "it straddles the base's x axis: a wheel drives the left or the right side",
+    ),
+    "wheels on one side": (
+        "body: {height: 0.3}",
+        f"body: {{collisions: [{{{WHEEL}, xyz: [0.2, 0.2, 0.1], {SIDEWAYS}}},"
+        f" {{{WHEEL}, xyz: [-0.2, 0.2, 0.1], {SIDEWAYS}}}]}}",
+        8,
+        "body.collisions",
+        "a body drives on wheels both left (y > 0) and right (y < 0) of its base",
+    ),
+    "a wheel off the ground": (
+        "body: {height: 0.3}",
+        "body: {collisions: [{box: {size: [0.5, 0.3, 0.2]}, xyz: [0, 0, 0.1]},"
+        f" {{{WHEEL}, xyz: [0, 0.2, 0.2], {SIDEWAYS}}},"
+        f" {{{WHEEL}, xyz: [0, -0.2, 0.1], {SIDEWAYS}}}]}}",
+        8,
+        "body.collisions",
+        "the wheel at y = 0.2 m stops 0.100 m above the body's lowest point",
+    ),
+    "a wheel of yes": (
+        "body: {height: 0.3}",
+        f"body: {{collisions: [{{{WHEEL}, xyz: [0, 0.2, 0.1], wheel: yes please}}]}}",
+        8,
+        "body.collisions[0].wheel",
+        "wheel is true or false, not the text 'yes please'",
     ),
 }
 

@@ -155,6 +155,46 @@ def test_a_wheel_on_its_side_reaches_up_by_its_radius_and_a_tall_one_by_half_its
     assert top(higher) == pytest.approx(0.4)
 
 
+# COLLIDING with a second wheel, on the right: the pair a differential base rolls on.
+ON_TWO_WHEELS = COLLIDING.replace(
+    '<link name="laser">',
+    """<link name="right_wheel">
+    <collision>
+      <origin rpy="1.5708 0 0"/>
+      <geometry><cylinder radius="0.1" length="0.05"/></geometry>
+    </collision>
+  </link>
+  <joint name="right_wheel_joint" type="continuous">
+    <parent link="base_link"/>
+    <child link="right_wheel"/>
+    <origin xyz="0 -0.22 0"/>
+  </joint>
+  <link name="laser">""",
+)
+
+
+def test_cylinders_that_continuous_joints_turn_left_and_right_are_the_wheels_it_drives_on(
+    tmp_path: Path,
+) -> None:
+    body = load(tmp_path, WITHOUT_BODY, ON_TWO_WHEELS).robot.body
+    assert [c.shape for c in body.wheels] == ["cylinder", "cylinder"]
+    assert body.track() == pytest.approx((0.1, 0.44))
+    assert body.describe().endswith("driven through its 2 wheel joints (differential)")
+
+
+def test_a_description_with_a_wheel_on_one_side_only_slides_and_says_so(tmp_path: Path) -> None:
+    body = load(tmp_path, WITHOUT_BODY, COLLIDING).robot.body
+    assert body.wheels == ()
+    assert body.describe().endswith("moved at the commanded twist")
+
+
+def test_a_continuous_joint_turning_a_standing_cylinder_is_no_wheel(tmp_path: Path) -> None:
+    # A spinning scanner's drum, say: it turns about the vertical, not about an axle.
+    standing = ON_TWO_WHEELS.replace('rpy="1.5708 0 0"', 'rpy="0 0 0"', 1)
+    body = load(tmp_path, WITHOUT_BODY, standing).robot.body
+    assert body.wheels == ()
+
+
 def test_a_collision_mesh_gives_no_body_and_the_body_must_be_written(tmp_path: Path) -> None:
     meshed = COLLIDING.replace('<box size="0.6 0.4 0.2"/>', '<mesh filename="base.stl"/>')
     with pytest.raises(SpecError) as raised:

@@ -1,10 +1,12 @@
 """Each bundled robot's simulated body against its description: the Jackal's and the
 TurtleBot3s' bodies are the collision shapes their descriptions hold (read from the real files
-by the gate's own reader), PyBullet's body spans them, meets a wall where they do, and a command
-beyond the robot's limits drives it at its top speed and turn rate."""
+by the gate's own reader), wheels where their continuous joints turn cylinders; PyBullet's body
+spans them, rolls on those wheels, meets a wall where they do, and a command beyond the robot's
+limits drives it at its top speed and turn rate."""
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import shutil
 from pathlib import Path
@@ -74,9 +76,7 @@ def described(name: str, turtlebot3: Path) -> tuple[Collision, ...]:
 
 def _raised(collision: Collision, height: float) -> Collision:
     x, y, z = collision.pose.xyz
-    return Collision(
-        collision.shape, collision.size, Pose3D((x, y, z + height), collision.pose.rpy)
-    )
+    return dataclasses.replace(collision, pose=Pose3D((x, y, z + height), collision.pose.rpy))
 
 
 def _key(collision: Collision) -> tuple[str, tuple[float, ...], tuple[float, ...]]:
@@ -92,7 +92,9 @@ def test_a_bundled_robots_body_is_the_collision_shapes_of_its_description(
     assert body.kind == "description"
     bundled = sorted(body.collisions, key=_key)
     read = sorted(described(name, turtlebot3), key=_key)
-    assert [(c.shape, c.size) for c in bundled] == [(c.shape, c.size) for c in read]
+    assert [(c.shape, c.size, c.wheel) for c in bundled] == [
+        (c.shape, c.size, c.wheel) for c in read
+    ]
     for ours, theirs in zip(bundled, read, strict=True):
         assert ours.pose.xyz == pytest.approx(theirs.pose.xyz, abs=1e-5)
         assert ours.pose.rpy == pytest.approx(theirs.pose.rpy, abs=1e-9)
@@ -149,3 +151,42 @@ def test_a_bundled_robot_meets_a_wall_where_its_body_does(name: str) -> None:
     assert touched is not None
     front = plan_extent(robot)[1, 0]  # m ahead of base_footprint
     assert touched[0] == pytest.approx(WALL_FACE - front, abs=0.02)
+
+
+# Each described robot's wheels: how many, and how they steer.
+STEERING = {
+    "jackal": "driven through its 4 wheel joints (skid-steer)",
+    "turtlebot3_burger": "driven through its 2 wheel joints (differential)",
+    "turtlebot3_waffle": "driven through its 2 wheel joints (differential)",
+}
+
+
+@pytest.mark.parametrize("name", DESCRIBED)
+def test_a_described_robot_rolls_on_its_wheels_at_the_speed_they_turn(name: str) -> None:
+    robot = ROBOTS[name]
+    assert robot.body.describe().endswith(STEERING[name])
+    radius, _ = robot.body.track()
+    speed = min(0.3, robot.max_linear_velocity)  # m/s
+    drive = Drive(robot)
+    with PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (), STEP, body=robot.body) as world:
+        for _ in range(round(3.0 / STEP)):
+            yaw = float(world.base_pose()[2])
+            measured = Twist(*world.base_twist(yaw))
+            wheels = drive_step(world, drive, Twist(speed, 0.0), measured, yaw, STEP)
+        linear, _ = world.base_twist(float(world.base_pose()[2]))
+        _, y, yaw = world.base_pose()
+    # What drove it is wheel speeds (rad/s), not a twist: the tyres roll it, hardly slipping.
+    assert wheels == pytest.approx((speed / radius, speed / radius), rel=0.03)
+    assert linear == pytest.approx(speed, rel=0.01)
+    # Straight ahead, it stays on its line.
+    assert abs(y) < 0.01
+    assert abs(yaw) < 0.01
+
+
+@pytest.mark.parametrize("name", DESCRIBED)
+def test_a_described_robot_drives_the_arc_it_is_commanded(name: str) -> None:
+    robot = ROBOTS[name]
+    command = Twist(min(0.3, robot.max_linear_velocity), 0.5)
+    assert steady_twist(robot, command, 3.0) == pytest.approx(
+        (command.linear, command.angular), rel=0.03
+    )
