@@ -39,6 +39,11 @@ OBSTACLE_COLOUR = "#4d4d4d"  # dark grey
 WALL_COLOUR = "#7a7a7a"  # dark grey, lighter than the obstacle's, so one by a wall stands out
 GOAL_COLOUR = "#2ca02c"  # green
 GROUND_COLOUR = "#f2f2f2"  # light grey
+RING_COLOUR = "#ff7f0e"  # orange: neither robot's colour, nor a wall's grey
+# An obstacle thinner than this is ringed: at some 60 pixels a metre, a 5 cm pole is three
+# pixels across, under the beams and a footprint's edge.
+RING_BELOW = 0.3  # m, the obstacle's bounding radius
+RING_SIZE = 36.0  # points across, whatever the view's scale: half an inch at the picture's size
 SIZE = (10.0, 7.0)  # inches; 1000 x 700 pixels at DPI
 DPI = 100  # pixels per inch
 PADDING = 1.0  # m, around everything the view must hold
@@ -102,7 +107,7 @@ def build_figure(figure: FailureFigure) -> Figure:
     axes = picture.add_subplot()
     low, high, step = _frame(axes, figure)
     walls = [_draw_walls(axes, figure.walls)] if figure.walls else []
-    obstacles = [] if figure.obstacle is None else [_draw_obstacle(axes, figure.obstacle)]
+    obstacles = [] if figure.obstacle is None else _draw_obstacle(axes, figure.obstacle)
     beams, paths, footprints = [], [], []
     for (name, colour, path, pose), fan in zip(_robots(figure), figure.beams, strict=True):
         beams.append(_draw_beams(axes, fan, colour))
@@ -252,13 +257,25 @@ def _draw_walls(axes: Axes, walls: Sequence[Box]) -> PolyCollection:
     return collection
 
 
-def _draw_obstacle(axes: Axes, obstacle: Obstacle) -> Patch:
-    """The obstacle's footprint, filled: a box turned by its yaw or a circle."""
+def _draw_obstacle(axes: Axes, obstacle: Obstacle) -> list[Artist]:
+    """The obstacle's footprint, filled: a box turned by its yaw or a circle; a thin one ringed,
+    so that it stands out at a glance. Returns what the legend names."""
     # Above the footprints: a 5 cm pole would hide under the robot that touches it.
     style = {"facecolor": OBSTACLE_COLOUR, "edgecolor": "black", "label": "obstacle", "zorder": 5.5}
     if isinstance(obstacle, Box):
-        return axes.add_patch(Polygon(_outline(obstacle), closed=True, **style))
-    return axes.add_patch(Circle((obstacle.x, obstacle.y), obstacle.radius, **style))
+        shape: Patch = Polygon(_outline(obstacle), closed=True, **style)
+    else:
+        shape = Circle((obstacle.x, obstacle.y), obstacle.radius, **style)
+    drawn: list[Artist] = [axes.add_patch(shape)]
+    if obstacle.bounding_radius < RING_BELOW:
+        ring: dict[str, Any] = {"marker": "o", "fillstyle": "none", "color": RING_COLOUR}
+        ring |= {"markeredgewidth": 2.5, "linestyle": "none"}
+        # A marker keeps its size in points however far the view reaches.
+        axes.plot([obstacle.x], [obstacle.y], markersize=RING_SIZE, zorder=6, **ring)
+        # The legend shows a ring of a legend entry's size.
+        label = "the obstacle, ringed: it is thin"
+        drawn.append(Line2D([], [], markersize=10.0, label=label, **ring))
+    return drawn
 
 
 def _draw_beams(axes: Axes, fan: BeamFan, colour: str) -> LineCollection:

@@ -23,6 +23,7 @@ from pytest_lasertest.plugin.options import (
     parse_policy,
     parse_profile,
     parse_seed,
+    parse_summary,
 )
 from pytest_lasertest.plugin.session import SEED_INPUT, LaserSession, XdistHooks
 
@@ -77,6 +78,13 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         metavar="DIR",
         help="write the evidence of every failing item below DIR: a PNG, a pairs file that "
         "replays it, a Gazebo world and a JSON file with every number.",
+    )
+    group.addoption(
+        "--laser-summary",
+        default=None,
+        metavar="FILE",
+        help="append the per-pair table to FILE as Markdown, with the picture of each failing "
+        'placement item: in GitHub Actions, --laser-summary="$GITHUB_STEP_SUMMARY".',
     )
     parser.addini(
         "laser_pairs",
@@ -141,6 +149,7 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
     profile = config.getoption("laser_profile")
     artifacts = config.getoption("laser_artifacts")
     examples = config.getoption("laser_examples")
+    summary = config.getoption("laser_summary")
     return LaserOptions(
         seed=seed,
         profile=parse_profile(profile) if profile is not None else default_profile(os.environ),
@@ -152,6 +161,9 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
         ),
         pairs=pairs,
         examples=parse_examples(examples) if examples is not None else None,
+        summary=(
+            parse_summary(summary, config.invocation_params.dir) if summary is not None else None
+        ),
     )
 
 

@@ -31,6 +31,7 @@ class LaserOptions:
     artifacts: Path | None
     pairs: tuple[Path, ...]  # pairs files named on the command line, absolute
     examples: int | None = None  # overrides the profile's
+    summary: Path | None = None  # --laser-summary: a Markdown file the table is appended to
 
     @property
     def budget(self) -> Budget:
@@ -152,6 +153,24 @@ def parse_artifacts(text: str, base: Path) -> Path:
         raise pytest.UsageError(
             f"--laser-artifacts={text!r}: {problem}: give a directory this user can write to "
             "(it is created if missing)"
+        )
+    return path
+
+
+def parse_summary(text: str, base: Path) -> Path:
+    """The Markdown file the run's summary is appended to (GitHub Actions' job summary, say);
+    refused up front where no file can be written."""
+    path = base / text
+    if not text or path.is_dir():
+        raise pytest.UsageError(
+            f"--laser-summary={text!r} is not a file: give a file path, such as "
+            '"$GITHUB_STEP_SUMMARY" (it is created if missing, and appended to)'
+        )
+    problem = unwritable(path.parent)
+    if problem is not None:
+        raise pytest.UsageError(
+            f"--laser-summary={text!r}: {problem}: give a file in a directory this user can "
+            "write to"
         )
     return path
 

@@ -200,6 +200,37 @@ class LaserSession:
                 terminalreporter.section(title)
                 for line in lines:
                     terminalreporter.write_line(line)
+        if self.options.summary is not None:
+            problem = self._append_summary(self.options.summary)
+            if problem is not None:
+                terminalreporter.write_line(f"lasertest: --laser-summary: {problem}", red=True)
+
+    def _append_summary(self, path: Path) -> str | None:
+        """Append the Markdown table to `path`; why it could not be, if it could not."""
+        from pytest_lasertest.artifacts.files import artifact_path
+        from pytest_lasertest.inputs.errors import display_path
+
+        pictures: dict[str, str] = {}
+        artifacts = self.options.artifacts
+        # Only pictures the run drew: none without --laser-artifacts, or where writing failed.
+        if artifacts is not None:
+            drawn = {
+                nodeid: artifact_path(artifacts, nodeid, ".png") for nodeid in self.summary.failing
+            }
+            pictures = {
+                nodeid: display_path(picture)
+                for nodeid, picture in drawn.items()
+                if picture.is_file()
+            }
+        text = self.summary.markdown(pictures)
+        if not text:
+            return None
+        try:
+            with path.open("a", encoding="utf-8") as handle:
+                handle.write(text)
+        except OSError as error:
+            return f"{display_path(path)} could not be written: {error.strerror or error}"
+        return None
 
     def pytest_unconfigure(self, config: pytest.Config) -> None:
         if self._client is not None:

@@ -66,6 +66,7 @@ class Summary:
     """Every pair's tally, keyed by `pairs file::pair`."""
 
     pairs: dict[str, PairTally] = field(default_factory=dict)
+    failing: list[str] = field(default_factory=list)  # the failing placement items' node ids
 
     def add(self, nodeid: str, failed: bool, properties: Iterable[tuple[str, object]]) -> None:
         """Count a placement item's call report; other reports leave no trace."""
@@ -74,13 +75,33 @@ class Summary:
             return
         pair = nodeid.rpartition("[")[0]
         self.pairs.setdefault(pair, PairTally()).add(failed, named)
+        if failed:
+            self.failing.append(nodeid)
+
+    def markdown(self, pictures: Mapping[str, str]) -> str:
+        """The table as GitHub-flavoured Markdown, and each failing placement item with the
+        path of its picture (`pictures`, by node id, when the run wrote artifacts)."""
+        if not self.pairs:
+            return ""
+        header, *rows = self._rows()
+        lines = ["### lasertest: placements searched, per pair", "", _markdown_row(header)]
+        lines.append("| --- |" + " ---: |" * len(COLUMNS))
+        lines += [_markdown_row(row) for row in rows]
+        if self.failing:
+            lines += ["", "Failing placement items:", ""]
+            lines += [_failing(nodeid, pictures.get(nodeid)) for nodeid in sorted(self.failing)]
+        return "\n".join(lines) + "\n"
+
+    def _rows(self) -> list[tuple[str, ...]]:
+        """The header, then one row per pair in node-id order."""
+        names = sorted(self.pairs)
+        return [("pair", *COLUMNS)] + [(name, *self.pairs[name].row()) for name in names]
 
     def lines(self, artifacts: str | None) -> list[str]:
         """The table, one row per pair in node-id order, and where the artifacts went."""
         if not self.pairs:
             return []
-        names = sorted(self.pairs)
-        rows = [("pair", *COLUMNS)] + [(name, *self.pairs[name].row()) for name in names]
+        rows = self._rows()
         widths = [max(len(row[column]) for row in rows) for column in range(len(rows[0]))]
         lines = [
             "  ".join(
@@ -116,6 +137,17 @@ class Unchanged:
             f"{pair}: no sensing change, no items: {self.pairs[pair]}"
             for pair in sorted(self.pairs)
         ]
+
+
+def _markdown_row(cells: tuple[str, ...]) -> str:
+    """A Markdown table row, pipes in a cell escaped (a pair's name is the user's)."""
+    return "| " + " | ".join(cell.replace("|", "\\|") for cell in cells) + " |"
+
+
+def _failing(nodeid: str, picture: str | None) -> str:
+    """One failing item's list entry, with its picture's path if it has one."""
+    shown = f"`{nodeid}`"
+    return f"- {shown}: picture `{picture}`" if picture else f"- {shown}"
 
 
 def _whole(value: object) -> int:

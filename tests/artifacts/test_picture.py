@@ -19,6 +19,7 @@ from pytest_lasertest.artifacts.picture import (
     BASELINE_COLOUR,
     CANDIDATE_COLOUR,
     OBSTACLE_COLOUR,
+    RING_COLOUR,
     WALL_COLOUR,
     WALL_REACH,
     BeamFan,
@@ -285,3 +286,30 @@ def test_a_picture_among_walls_keeps_every_label_inside_it() -> None:
     assert drawn.y0 >= 0.0
     assert drawn.x1 <= 10.0
     assert drawn.y1 <= 7.0
+
+
+POLE = Cylinder(x=6.2, y=0.0, radius=0.025, height=0.5)  # the paper's thin pole, 5 cm
+
+
+def test_a_thin_pole_is_ringed_so_that_it_stands_out_at_a_glance(tmp_path: Path) -> None:
+    figure = failure_figure(POLE)
+    picture = build_figure(figure)
+    picture.canvas.draw()
+    centre = picture.axes[0].transData.transform((POLE.x, POLE.y))
+    image = imread(draw_failure(figure, tmp_path / "item.png"))
+    rows, columns = np.nonzero(
+        np.abs(image[:, :, :3] - np.array(to_rgb(RING_COLOUR))).max(axis=2) < 0.05
+    )
+    # Display coordinates count up from the bottom, image rows down from the top.
+    reach = np.hypot(columns - centre[0], (700 - rows) - centre[1])
+    ring = reach[reach < 40]
+    # A ring of some 50 pixels across, about the pole, where the pole is three pixels wide.
+    assert len(ring) > 100
+    assert 15 < np.median(ring) < 35
+    labels = [text.get_text() for text in picture.legends[0].get_texts()]
+    assert "the obstacle, ringed: it is thin" in labels
+
+
+def test_an_obstacle_wide_enough_to_see_is_not_ringed(tmp_path: Path) -> None:
+    image = imread(draw_failure(failure_figure(BOX), tmp_path / "item.png"))
+    assert pixels_near(image, RING_COLOUR, tolerance=0.05) == 0

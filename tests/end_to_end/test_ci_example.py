@@ -32,6 +32,7 @@ def gate_command(pairs: str) -> list[str]:
         step["run"]
         .replace('"$PAIRS"', pairs)
         .replace("${{ github.event.pull_request.number }}", "7")
+        .replace('"$GITHUB_STEP_SUMMARY"', "step-summary.md")
     )
     words = shlex.split(command)
     assert words[0] == "pytest"
@@ -55,6 +56,18 @@ def test_the_workflow_fetches_the_history_and_keeps_the_artifacts_and_junit_xml(
     (junit,) = [word for word in command if word.startswith("--junitxml=")]
     assert upload["with"]["path"].rstrip("/") == artifacts.partition("=")[2]
     assert junit.partition("=")[2].startswith(artifacts.partition("=")[2] + "/")
+
+
+def test_the_workflow_keeps_the_failures_found_and_sums_up_on_the_job_summary() -> None:
+    (job,) = workflow()["jobs"].values()
+    (cache,) = [step for step in job["steps"] if "actions/cache" in step.get("uses", "")]
+    # Before the gate runs, so that it replays what an earlier run shrank.
+    gate = [step.get("name") for step in job["steps"]].index("Run the gate")
+    assert job["steps"].index(cache) < gate
+    assert cache["with"]["path"] == ".hypothesis"
+    assert cache["with"]["key"].endswith("${{ github.run_id }}")
+    assert "lasertest-hypothesis-" in cache["with"]["restore-keys"].split()
+    assert "--laser-summary=step-summary.md" in gate_command("pairs.yaml")
 
 
 @pytest.fixture

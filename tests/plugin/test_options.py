@@ -106,6 +106,11 @@ def test_pairs_files_from_the_ini_file_join_the_default_test_paths(tmp_path: Pat
         ("--laser-profile=fast", "ERROR: --laser-profile='fast' is not a budget profile*"),
         ("--laser-policy=strict", "ERROR: --laser-policy='strict' is not a policy*"),
         ("--laser-artifacts=conftest.py", "ERROR: --laser-artifacts='conftest.py' is not a dir*"),
+        ("--laser-summary=.", "ERROR: --laser-summary='.' is not a file*GITHUB_STEP_SUMMARY*"),
+        (
+            "--laser-summary=conftest.py/summary.md",
+            "ERROR: --laser-summary='conftest.py/summary.md': * is a file, so no directory*",
+        ),
         ("--laser-pairs=gone.yaml", "ERROR: --laser-pairs: 'gone.yaml' is missing*"),
     ],
 )

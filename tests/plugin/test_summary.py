@@ -103,3 +103,20 @@ def test_a_changed_pair_beside_an_unchanged_one_runs_and_the_run_fails_as_usual(
     result = pytester.runpytest("-k", "coverage", "--laser-seed=1")
     result.assert_outcomes(failed=1)
     result.stdout.fnmatch_lines(["*narrower[[]coverage[]]*", "*swap: no sensing change*"])
+
+
+def test_the_markdown_summary_is_appended_with_the_picture_of_each_failing_item(
+    pytester: pytest.Pytester, paper: Path
+) -> None:
+    # As a GitHub job summary: a file the workflow's earlier steps may have written to.
+    summary = pytester.path / "step-summary.md"
+    summary.write_text("earlier step\n")
+    run = ("-k", "size and baseline-misses-2", "--laser-seed=1", "--laser-examples=2")
+    result = pytester.runpytest(*run, "--laser-artifacts=out", "--laser-summary=step-summary.md")
+    result.assert_outcomes(failed=1)
+    lines = summary.read_text().splitlines()
+    assert lines[:3] == ["earlier step", "### lasertest: placements searched, per pair", ""]
+    assert lines[5].startswith("| paper.lasertest.yaml::size | 1 | ")
+    picture = "out/paper.lasertest.yaml/size_baseline-misses-2.png"
+    assert lines[-1] == f"- `paper.lasertest.yaml::size[baseline-misses-2]`: picture `{picture}`"
+    assert (pytester.path / picture).is_file()

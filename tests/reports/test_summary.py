@@ -66,3 +66,27 @@ def test_a_run_without_placement_items_has_no_summary() -> None:
     summary = Summary()
     summary.add("a.lasertest.yaml::p[coverage]", True, [])
     assert summary.lines("out") == []
+
+
+def test_the_markdown_table_has_a_row_per_pair_and_lists_each_failure_with_its_picture() -> None:
+    summary = Summary()
+    summary.add("a.lasertest.yaml::p[candidate-misses-0]", True, searched(3, 1, regressions=1))
+    summary.add("a.lasertest.yaml::p[candidate-misses-1]", True, searched(2, 0))
+    summary.add("b.lasertest.yaml::q|r[avoid-0]", False, searched(5, 0))
+    pictures = {"a.lasertest.yaml::p[candidate-misses-0]": "out/a.lasertest.yaml/p_c-0.png"}
+    lines = summary.markdown(pictures).splitlines()
+    assert lines[2].split(" | ")[:3] == ["| pair", "witnesses", "examples"]
+    assert lines[3] == "| --- |" + " ---: |" * 9  # the pair, then nine counts
+    assert lines[4].startswith("| a.lasertest.yaml::p | 2 | 5 | 1 (17%) | 2 |")
+    # A pipe in a pair's name would end its cell.
+    assert lines[5].startswith("| b.lasertest.yaml::q\\|r | 1 | 5 |")
+    assert lines[-2:] == [
+        "- `a.lasertest.yaml::p[candidate-misses-0]`: picture `out/a.lasertest.yaml/p_c-0.png`",
+        "- `a.lasertest.yaml::p[candidate-misses-1]`",
+    ]
+
+
+def test_a_run_without_placement_items_has_no_markdown_table() -> None:
+    summary = Summary()
+    summary.add("a.lasertest.yaml::p[coverage]", True, [])
+    assert summary.markdown({}) == ""
