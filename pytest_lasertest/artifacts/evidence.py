@@ -1,14 +1,17 @@
 """The artifacts of a failing item under `--laser-artifacts`: for a placement, a picture, a pairs
-file that replays the case, a Gazebo world and a JSON file with every number, side by side; for
-a failure without an obstacle, the picture, the empty world and the numbers; for a lost coverage
-or a witness the ray cast rejects, the numbers. Every JSON file starts with the same header.
-Each file is written on its own, best-effort (`files.write_best_effort`): one the operating
-system refuses is reported beside the item's failure, and the others are still written.
+file that replays the case, a Gazebo world, a JSON file with every number and a rosbag2 of both
+robots (`bag.py`), side by side; for a failure without an obstacle, the picture, the empty world,
+the numbers and the rosbag2; for a lost coverage or a witness the ray cast rejects, the numbers.
+Every JSON file starts with the same header. Each file is written on its own, best-effort
+(`files.write_best_effort`): one the operating system refuses is reported beside the item's
+failure, and the others are still written.
 
 The picture shows the moment the candidate failed: its first collision, the instant it was
 judged stuck, or (when it simply ran out of time) its last pose; both robots' trajectories and
-both scanners' beams at that instant, each from its own robot, among the world's walls. The
-Gazebo world holds the walls too.
+both scanners' beams at that instant, each from its own robot, among the world's walls, over
+the costmap the candidate's controller published then (the candidate is driven again for it,
+keeping the costmap: a run is deterministic, so it is the same run). The Gazebo world holds the
+walls too.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from pytest_lasertest.artifacts.bag import write_bag
 from pytest_lasertest.artifacts.files import artifact_path, write_best_effort, write_json
 from pytest_lasertest.artifacts.picture import BeamFan, FailureFigure, draw_failure
 from pytest_lasertest.artifacts.repro import write_repro
@@ -32,21 +36,25 @@ from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.model.verify import Verification
 from pytest_lasertest.model.walls import NO_WALLS, Walls
 from pytest_lasertest.pairsfile import Pair, PairsFile, Scanner
+from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.pairsfile.placements import PinnedPlacement
 from pytest_lasertest.reports.failure import PlacementFailure
 from pytest_lasertest.reports.formats import Artifacts, obstacle_json, witness_json
 from pytest_lasertest.search.drives import PairDrive
-from pytest_lasertest.sim.scenario import Run
+from pytest_lasertest.sim.scenario import ControllerError, Run, run_scenario
 
-SUFFIXES = (".png", ".lasertest.yaml", ".world", ".json")
+# The picture, the repro, the Gazebo world, the numbers and the rosbag2's directory.
+SUFFIXES = (".png", ".lasertest.yaml", ".world", ".json", "")
 
 
 def write_evidence(directory: Path, failure: PlacementFailure) -> Artifacts:
-    """Write the four artifacts of `failure` below `directory`, each best-effort."""
-    png, repro, world, numbers = (
+    """Write the five artifacts of `failure` below `directory`, each best-effort."""
+    png, repro, world, numbers, bag = (
         artifact_path(directory, failure.nodeid, suffix) for suffix in SUFFIXES
     )
-    obstacle = failure.result.placement.obstacle
+    result = failure.result
+    runs, note = driven_again((result.baseline, result.candidate), failure.controller)
+    obstacle = result.placement.obstacle
     pinned = PinnedPlacement(
         obstacle, failure.seed, failure.result.placement.direction, Location(repro, 1)
     )
@@ -56,12 +64,14 @@ def write_evidence(directory: Path, failure: PlacementFailure) -> Artifacts:
         "pairs file) to keep the case as a regression test.",
     ]
     walls = failure.spec.world.walls.boxes
+    footprint = failure.spec.robot.footprint_array()
     return write_best_effort(
         (
-            (png, lambda: draw_failure(failure_figure(failure), png)),
+            (png, lambda: draw_failure(failure_figure(failure, runs, note), png)),
             (repro, lambda: write_repro(repro, failure.spec, failure.pair, pinned, header)),
             (world, lambda: write_world(world, failure.pair.name, (obstacle,), walls)),
             (numbers, lambda: write_json(numbers, evidence_json(failure))),
+            (bag, lambda: write_bag(bag, runs, footprint, (obstacle, *walls))),
         )
     )
 
@@ -77,21 +87,42 @@ def failure_moment(run: Run) -> tuple[float, str]:
     return end, f"goal not reached by t = {end:.2f} s"
 
 
-def failure_figure(failure: PlacementFailure) -> FailureFigure:
-    """The picture of the candidate's failure at the minimal placement."""
-    result = failure.result
-    baseline = result.baseline if result.baseline is not None else result.candidate
-    title = f"{failure.nodeid}: {result.classification}"
-    return drive_figure(
-        title, failure.spec, failure.pair, (baseline, result.candidate), result.placement.obstacle
-    )
+def failure_figure(failure: PlacementFailure, runs: dict[str, Run], note: str) -> FailureFigure:
+    """The picture of the candidate's failure at the minimal placement, from its runs by role
+    (the baseline's only where it was driven) and a note for the title."""
+    result, candidate = failure.result, runs["candidate"]
+    baseline = runs.get("baseline", candidate)
+    title = f"{failure.nodeid}: {result.classification}{note}"
+    obstacle = result.placement.obstacle
+    return drive_figure(title, failure.spec, failure.pair, (baseline, candidate), obstacle)
+
+
+def driven_again(
+    runs: tuple[Run | None, Run], controller: ControllerChoice
+) -> tuple[dict[str, Run], str]:
+    """The baseline's run (if it was driven) and the candidate's, driven again recording what
+    each robot published (the same runs: runs are deterministic), by role; and a note for the
+    picture's title where the controller breaks on being asked what it publishes, whose runs
+    are then kept as they were."""
+    again: dict[str, Run] = {}
+    try:
+        for role, run in zip(("baseline", "candidate"), runs, strict=True):
+            if run is not None:
+                scenario = dataclasses.replace(run.scenario, record=True)
+                again[role] = run_scenario(scenario, controller.factory)
+    except ControllerError as error:
+        kept = dict(zip(("baseline", "candidate"), runs, strict=True))
+        note = f" (not recorded: {error.fault.describe()})"
+        return {role: run for role, run in kept.items() if run is not None}, note
+    return again, ""
 
 
 def drive_figure(
     title: str, spec: PairsFile, pair: Pair, runs: tuple[Run, Run], obstacle: Obstacle | None
 ) -> FailureFigure:
     """The picture of the candidate's failure in one world, both robots' runs (baseline,
-    candidate) drawn at the moment the candidate failed, among the world's walls."""
+    candidate) drawn at the moment the candidate failed, among the world's walls, over the
+    costmap the candidate's run kept, if it kept one."""
     baseline, candidate = runs
     time, label = failure_moment(candidate)
     candidate_pose, baseline_pose = _pose_at(candidate, time), _pose_at(baseline, time)
@@ -126,6 +157,7 @@ def drive_figure(
         goal=(world.goal.x, world.goal.y),
         start=(world.start.x, world.start.y),
         walls=walls.boxes,
+        costmap=candidate.recording.last_costmap if candidate.recording else None,
     )
 
 
@@ -136,23 +168,27 @@ def write_control_evidence(
     pair: Pair,
     drives: PairDrive,
     run_options: dict[str, object],
+    controller: ControllerChoice,
 ) -> Artifacts:
     """The artifacts of a failure in the world without an obstacle, each best-effort: the
-    picture, the Gazebo world with only the walls, and every number; the item itself replays
-    it."""
-    png, _, world, numbers = (artifact_path(directory, nodeid, suffix) for suffix in SUFFIXES)
-    runs = (drives.baseline, drives.candidate)
+    picture, the Gazebo world with only the walls, every number and the rosbag2; the item itself
+    replays it."""
+    png, _, world, numbers, bag = (artifact_path(directory, nodeid, suffix) for suffix in SUFFIXES)
+    again, note = driven_again((drives.baseline, drives.candidate), controller)
+    runs = (again["baseline"], again["candidate"])
     evidence = {
         **evidence_header(nodeid, spec, pair, run_options),
         "candidate": _run_json(drives.candidate),
         "baseline": _run_json(drives.baseline),
     }
-    figure = drive_figure(f"{nodeid}: no obstacle", spec, pair, runs, None)
+    figure = drive_figure(f"{nodeid}: no obstacle{note}", spec, pair, runs, None)
+    walls = spec.world.walls.boxes
     return write_best_effort(
         (
             (png, lambda: draw_failure(figure, png)),
-            (world, lambda: write_world(world, pair.name, (), spec.world.walls.boxes)),
+            (world, lambda: write_world(world, pair.name, (), walls)),
             (numbers, lambda: write_json(numbers, evidence)),
+            (bag, lambda: write_bag(bag, again, spec.robot.footprint_array(), walls)),
         )
     )
 

@@ -28,6 +28,7 @@ from matplotlib.ticker import MultipleLocator
 from pytest_lasertest.artifacts.files import write_atomically
 from pytest_lasertest.model.geometry import FloatArray
 from pytest_lasertest.model.obstacles import Box, Obstacle
+from pytest_lasertest.model.occupancy import OccupancyGrid
 from pytest_lasertest.model.route import place
 
 BoolArray = npt.NDArray[np.bool_]
@@ -40,6 +41,10 @@ WALL_COLOUR = "#7a7a7a"  # dark grey, lighter than the obstacle's, so one by a w
 GOAL_COLOUR = "#2ca02c"  # green
 GROUND_COLOUR = "#f2f2f2"  # light grey
 RING_COLOUR = "#ff7f0e"  # orange: neither robot's colour, nor a wall's grey
+# RViz's costmap colour scheme: lethal cells purple, inscribed cells cyan.
+LETHAL_COLOUR = (0.58, 0.0, 0.83, 0.85)  # RGBA
+INSCRIBED_COLOUR = (0.0, 0.74, 0.83, 0.45)  # RGBA
+LETHAL_VALUE, INSCRIBED_VALUE = 100, 99  # as costmap_2d publishes them
 # An obstacle thinner than this is ringed: at some 60 pixels a metre, a 5 cm pole is three
 # pixels across, under the beams and a footprint's edge.
 RING_BELOW = 0.3  # m, the obstacle's bounding radius
@@ -87,6 +92,8 @@ class FailureFigure:
     goal: tuple[float, float]  # m
     start: tuple[float, float]  # m
     walls: tuple[Box, ...] = ()  # the world's; none in an empty world
+    # The costmap the candidate's controller published when it failed, if it publishes one.
+    costmap: OccupancyGrid | None = None
 
 
 def draw_failure(figure: FailureFigure, path: Path) -> Path:
@@ -107,6 +114,7 @@ def build_figure(figure: FailureFigure) -> Figure:
     axes = picture.add_subplot()
     low, high, step = _frame(axes, figure)
     walls = [_draw_walls(axes, figure.walls)] if figure.walls else []
+    costmap = [] if figure.costmap is None else _draw_costmap(axes, figure.costmap, low, high)
     obstacles = [] if figure.obstacle is None else _draw_obstacle(axes, figure.obstacle)
     beams, paths, footprints = [], [], []
     for (name, colour, path, pose), fan in zip(_robots(figure), figure.beams, strict=True):
@@ -118,7 +126,17 @@ def build_figure(figure: FailureFigure) -> Figure:
     start, goal, failure = _draw_markers(axes, figure)
     _add_scale_bar(axes, step)
     # Filled column by column: the two long beam labels share the first, so three columns fit.
-    handles: list[Artist] = [*beams, *obstacles, *walls, start, *paths, *footprints, goal, failure]
+    handles: list[Artist] = [
+        *beams,
+        *obstacles,
+        *walls,
+        start,
+        *paths,
+        *footprints,
+        goal,
+        failure,
+        *costmap,
+    ]
     # Below the axes, so it never hides the obstacle or a path and leaves the view its width.
     picture.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8)
     picture.suptitle(_literal(figure.title), fontsize=10)
@@ -255,6 +273,31 @@ def _draw_walls(axes: Axes, walls: Sequence[Box]) -> PolyCollection:
     # A building must not widen the view: `_frame` takes in only the walls near the action.
     axes.add_collection(collection, autolim=False)
     return collection
+
+
+def _draw_costmap(
+    axes: Axes, grid: OccupancyGrid, low: FloatArray, high: FloatArray
+) -> list[Artist]:
+    """The costmap's lethal and inscribed cells under everything else, over the view and as
+    far again each way (the view widens to the axes' shape); returns the legend's patches."""
+    span = high - low
+    first = np.floor((low - span - np.array(grid.origin)) / grid.resolution).astype(int)
+    last = np.ceil((high + span - np.array(grid.origin)) / grid.resolution).astype(int)
+    first = np.clip(first, 0, [grid.width, grid.height])
+    last = np.clip(last, first, [grid.width, grid.height])
+    cells = grid.data[first[1] : last[1], first[0] : last[0]]
+    image = np.zeros((*cells.shape, 4))
+    image[cells == INSCRIBED_VALUE] = INSCRIBED_COLOUR
+    image[cells == LETHAL_VALUE] = LETHAL_COLOUR
+    corner = np.array(grid.origin) + first * grid.resolution
+    far = np.array(grid.origin) + last * grid.resolution
+    extent = (corner[0], far[0], corner[1], far[1])
+    # Row 0 is the grid's bottom row; "auto" leaves the view's own fitting alone.
+    axes.imshow(image, origin="lower", extent=extent, interpolation="nearest", aspect="auto")
+    return [
+        Patch(facecolor=LETHAL_COLOUR, label="candidate's costmap: lethal"),
+        Patch(facecolor=INSCRIBED_COLOUR, label="candidate's costmap: inscribed"),
+    ]
 
 
 def _draw_obstacle(axes: Axes, obstacle: Obstacle) -> list[Artist]:

@@ -24,6 +24,14 @@ In a world with walls, a controller with a `receive_map` method is given the wor
 as a nav_msgs/OccupancyGrid (`OccupancyGrid`), after it is made and before its first scan:
 map_server latches /map, so a node that subscribes has it before it drives. A controller
 without one navigates by its scans alone.
+
+A controller with a `published_costmap` method returns the costmap its planner plans in, as
+costmap_2d publishes it on global_costmap/costmap: an `OccupancyGrid` of 0 (free) to 98
+(inflated), 99 (inscribed), 100 (lethal) and -1 (unknown), or None before it has one; one
+with a `published_plan` method returns its global plan, points (N, 2) m in the odom frame (a
+nav_msgs/Path's positions), or None. A recorded run (a failure's) takes both once a simulated
+second and when the drive is decided: its rosbag2 holds them, and its picture draws the
+costmap's lethal and inscribed cells at the moment the drive failed.
 """
 
 from __future__ import annotations

@@ -9,6 +9,7 @@ without one pay nothing for the plugin.
 from __future__ import annotations
 
 import os
+from collections.abc import Generator
 from pathlib import Path
 
 import pytest
@@ -137,6 +138,21 @@ def pytest_collect_file(file_path: Path, parent: pytest.Collector) -> pytest.Fil
 
     pair_file: PairFile = PairFile.from_parent(parent, path=file_path)
     return pair_file
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_makereport(
+    item: pytest.Item, call: pytest.CallInfo[None]
+) -> Generator[None, pytest.TestReport, pytest.TestReport]:
+    """A failing item's artifacts in its report, for pytest-html."""
+    report = yield
+    error = call.excinfo.value if call.excinfo is not None else None
+    artifacts = getattr(error, "artifacts", ())
+    if report.when == "call" and artifacts and item.get_closest_marker("lasertest"):
+        from pytest_lasertest.plugin.html import add_extras
+
+        add_extras(report, artifacts)
+    return report
 
 
 def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions:

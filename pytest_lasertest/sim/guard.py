@@ -121,7 +121,7 @@ class Guard:
                 ControllerFault(
                     "the factory",
                     0.0,
-                    f"returned {_shown(controller)}, which has no observe method",
+                    f"returned {shown(controller)}, which has no observe method",
                     f"return an object with observe(scan, odometry, time) answering {COMMAND}",
                 )
             )
@@ -150,6 +150,12 @@ class Guard:
         receive = self._call("the factory", 0.0, getattr, self._controller, "receive_map", None)
         if receive is not None:
             self._call("receive_map", 0.0, receive, grid)
+
+    def ask(self, name: str, time: float) -> object:
+        """What the controller's optional method `name` answers, called at `time` s without
+        arguments; None if it has no such method. The caller judges the answer."""
+        method = self._call(name, time, getattr, self._controller, name, None)
+        return None if method is None else self._call(name, time, method)
 
     def _figure(self, name: str, unit: str, meaning: str) -> float | None:
         """The controller's optional figure `name`: none, or a positive finite number of
@@ -233,7 +239,7 @@ def qualified_name(factory: object) -> str:
     """`module:qualname` of a factory, for messages."""
     module = getattr(factory, "__module__", None)
     name = getattr(factory, "__qualname__", None)
-    return f"{module}:{name}" if module and name else _shown(factory)
+    return f"{module}:{name}" if module and name else shown(factory)
 
 
 def _check_arity(observe: Any) -> None:
@@ -264,7 +270,7 @@ def _command(command: object, time: float) -> tuple[float, float]:
         fix = f"return a tuple of two numbers {COMMAND}"
         if inspect.isgenerator(command):
             fix += ": observe must return its command, not yield it"
-        problem = f"returned {_shown(command)}, not {COMMAND}"
+        problem = f"returned {shown(command)}, not {COMMAND}"
         raise Faulted(ControllerFault("observe", time, problem, fix))
     names = ("forward speed", "turn rate")
     bad = [name for name, value in zip(names, numbers, strict=True) if not math.isfinite(value)]
@@ -273,7 +279,7 @@ def _command(command: object, time: float) -> tuple[float, float]:
             ControllerFault(
                 "observe",
                 time,
-                f"returned {_shown(command)}: {_not_finite(bad)}",
+                f"returned {shown(command)}: {_not_finite(bad)}",
                 "return finite numbers (to stand still, (0.0, 0.0)); a speed beyond the robot's "
                 "limits is cut to them, but NaN and infinity are refused, as the Husky's "
                 "diff_drive_controller ignores such a command",
@@ -336,15 +342,15 @@ def _one_line(error: BaseException) -> str:
     return f"{type(error).__name__}: {lines[0]}" if lines else type(error).__name__
 
 
-def _shown(value: object) -> str:
+def shown(value: object) -> str:
     """A short repr of what the controller gave, whatever it is."""
     if inspect.isgenerator(value):
         return "a generator"
-    shown = reprlib.Repr()  # Python 3.11's takes its limits as attributes only
-    shown.maxstring = shown.maxother = 40
-    shown.maxlist = shown.maxtuple = 4
+    short = reprlib.Repr()  # Python 3.11's takes its limits as attributes only
+    short.maxstring = short.maxother = 40
+    short.maxlist = short.maxtuple = 4
     try:
-        return shown.repr(value)
+        return short.repr(value)
     except Exception:  # noqa: BLE001  (a repr that raises must not hide the fault)
         return f"a {type(value).__name__}"
 
@@ -367,7 +373,7 @@ def _activity(value: object, time: float) -> tuple[tuple[float, str], ...]:
             ControllerFault(
                 "activity",
                 time,
-                f"is {_shown(value)}, not a list of (time in s, text) pairs",
+                f"is {shown(value)}, not a list of (time in s, text) pairs",
                 "make activity a list of (time, what) pairs, e.g. [(12.5, 'Spin')], or leave "
                 "it out",
             )
@@ -395,7 +401,7 @@ def _positive(value: object, name: str, unit: str, meaning: str) -> float | None
             ControllerFault(
                 "the factory",
                 0.0,
-                f"returned a controller whose {name} is {_shown(value)}, not a positive number "
+                f"returned a controller whose {name} is {shown(value)}, not a positive number "
                 f"of {unit}",
                 f"set {name} to {meaning}, or leave it out",
             )

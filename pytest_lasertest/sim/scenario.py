@@ -43,6 +43,7 @@ from pytest_lasertest.sim.drive import Drive, Twist, drive_step
 from pytest_lasertest.sim.guard import ControllerFault, Faulted, Guard
 from pytest_lasertest.sim.lidar import FlatLidar, noisy, ranges_from_fractions, scan_rays
 from pytest_lasertest.sim.oracles import Referee, Rules, Verdicts
+from pytest_lasertest.sim.recording import Recorder, Recording
 
 # A physics step of one 50 Hz scan period: the Husky's drive reaches its commands within 3 % at
 # 5-20 ms steps (tests/sim/test_drive.py), and the longest keeps the run cheapest.
@@ -68,6 +69,9 @@ class Scenario:
     caster: Caster = "flat"
     # The world's walls: static bodies like the obstacles, and the map the controller is given.
     walls: Walls = field(default_factory=Walls)
+    # Whether the run keeps what the robot published (`recording.py`): a failure's rosbag2 and
+    # picture show it. Off in the search, where most runs are never looked at.
+    record: bool = False
 
     @property
     def solids(self) -> tuple[Obstacle, ...]:
@@ -90,6 +94,9 @@ class Run:
     verdicts: Verdicts
     # What the controller said it did, (s, what): a navigation stack's recoveries, say.
     activity: tuple[tuple[float, str], ...] = ()
+    # With `Scenario.record`: the scans, and the controller's costmap and plan once a second
+    # and when the run was decided (or ran out of time).
+    recording: Recording | None = None
 
     @property
     def passed(self) -> bool:
@@ -160,6 +167,7 @@ class _Runner:
         self._pending: collections.deque[LaserScan] = collections.deque()
         self._delay = scenario.profile.driver.delay(scenario.profile.scan_period)  # s
         self._next_tick = 0.0  # s, when the controller's own clock next wants a call
+        self.recorder = Recorder(controller) if scenario.record else None
 
     def run(self) -> Run:
         scenario, world = self.scenario, self.world
@@ -180,6 +188,8 @@ class _Runner:
                 self._latest = scan
                 command = Twist(*self._call(scan, time, pose, measured))
                 scans += 1
+            if self.recorder is not None:
+                self.recorder.step(time, arrived)
             if not arrived and ticks and self._latest is not None:
                 command = Twist(*self._call(self._latest, time, pose, measured))
             driven = drive_step(world, self.drive, command, measured, yaw, scenario.time_step)
@@ -201,6 +211,7 @@ class _Runner:
             scans,
             self.referee.verdicts(),
             self.controller.activity(ended),
+            self.recorder.finish(ended) if self.recorder is not None else None,
         )
 
     def _tick_due(self, time: float) -> bool:

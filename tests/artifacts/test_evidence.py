@@ -13,7 +13,9 @@ from matplotlib.collections import PolyCollection
 from pytest_lasertest.artifacts.evidence import beam_fan, drive_figure, write_control_evidence
 from pytest_lasertest.artifacts.picture import build_figure
 from pytest_lasertest.model.obstacles import Box
+from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
+from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.search.drives import PairDrive
 from pytest_lasertest.sim.oracles import Collision, Goal, Stuck, Verdicts
 from pytest_lasertest.sim.scenario import Run, Scenario
@@ -28,6 +30,7 @@ WALLED_PAIRS = VALID_PAIRS.replace(
     "    - {from: {x: -2.0, y: -2.0}, to: {x: 12.0, y: -2.0}, thickness: 0.2}\n",
 )
 NODEID = "gate.lasertest.yaml::same"
+REACTIVE = ControllerChoice("reactive", "the default", ReactiveController)
 
 
 @pytest.fixture
@@ -120,7 +123,7 @@ def test_the_gazebo_world_of_a_failure_without_an_obstacle_holds_the_walls(
     spec: PairsFile, tmp_path: Path
 ) -> None:
     artifacts = write_control_evidence(
-        tmp_path / "out", NODEID, spec, same(spec), drives(spec), {"seed": 0}
+        tmp_path / "out", NODEID, spec, same(spec), drives(spec), {"seed": 0}, REACTIVE
     )
     assert not artifacts.unwritten
     (world_file,) = [path for path in artifacts.written if path.suffix == ".world"]

@@ -176,11 +176,13 @@ def test_a_disk_that_fills_up_loses_only_the_repro_and_the_report_says_so(
             f"  artifact   {stem}.png",
             f"  artifact   {stem}.world",
             f"  artifact   {stem}.json",
+            f"  artifact   {stem}",
             f"  unwritten  {stem}.lasertest.yaml: No space left on device [[]ENOSPC[]]; fix: free "
             "space on that disk, or give --laser-artifacts a directory on another one",
         ]
     )
     assert sorted(path.name for path in (pytester.path / stem).parent.iterdir()) == [
+        "size_candidate-misses-2",  # the rosbag2's directory
         "size_candidate-misses-2.json",
         "size_candidate-misses-2.png",
         "size_candidate-misses-2.world",
@@ -220,7 +222,7 @@ def test_a_300_character_pair_name_still_gets_its_files_each_told_apart(
     result = pytester.runpytest("-m", "control", "--laser-artifacts=out")
     result.assert_outcomes(failed=2)
     written = sorted((pytester.path / "out/gate.lasertest.yaml").iterdir())
-    assert len(written) == 6  # a picture, a world and the numbers for each
+    assert len(written) == 8  # a picture, a world, the numbers and a rosbag2 for each
     assert all(len(path.name) <= NAME_LIMIT + len(".world") for path in written)
     items = {json.loads(path.read_text())["item"] for path in written if path.suffix == ".json"}
     assert items == {f"gate.lasertest.yaml::{name}[no-obstacle]" for name in (first, second)}

@@ -208,13 +208,23 @@ def test_the_repro_file_collected_alone_fails_the_same_way(
     assert pinned["lasertest.classification"] == evidence["classification"] == "regression"
 
 
-def test_a_failing_item_writes_a_picture_a_repro_a_gazebo_world_and_every_number(
+def test_a_failing_item_writes_a_picture_a_repro_a_gazebo_world_every_number_and_a_bag(
     pytester: pytest.Pytester, paper: Path
 ) -> None:
     result = pytester.runpytest(*RUN, "--laser-artifacts=out")
     written = sorted(path.name for path in ARTIFACTS.iterdir())
     stem = "size_candidate-misses-2"
-    assert written == [f"{stem}.json", f"{stem}.lasertest.yaml", f"{stem}.png", f"{stem}.world"]
+    assert written == [
+        stem,  # the rosbag2's directory
+        f"{stem}.json",
+        f"{stem}.lasertest.yaml",
+        f"{stem}.png",
+        f"{stem}.world",
+    ]
+    assert sorted(path.name for path in (ARTIFACTS / stem).iterdir()) == [
+        "metadata.yaml",
+        f"{stem}.mcap",
+    ]
     assert (ARTIFACTS / f"{stem}.png").read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
     world = ET.parse(ARTIFACTS / f"{stem}.world").getroot()
     assert world.get("version") == "1.6"

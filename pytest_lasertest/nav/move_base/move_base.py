@@ -50,6 +50,7 @@ from pytest_lasertest.nav.move_base.costmap import (
 )
 from pytest_lasertest.nav.move_base.dwa import LocalPlanner, Surroundings
 from pytest_lasertest.nav.move_base.navfn import windowed_plan
+from pytest_lasertest.nav.move_base.publisher import published
 from pytest_lasertest.nav.move_base.recovery import (
     BackUp,
     ClearCostmap,
@@ -128,6 +129,16 @@ class MoveBase:
         if self._costmap is None:
             raise RuntimeError("move_base has no costmap before its first scan")
         return self._costmap
+
+    def published_costmap(self) -> OccupancyGrid | None:
+        """The global costmap as move_base publishes it on global_costmap/costmap
+        (`publisher.py`); none before the first scan."""
+        return None if self._costmap is None else published(self._costmap)
+
+    def published_plan(self) -> FloatArray:
+        """The global plan (N, 2) m, what is left of it ahead of the robot: navfn's plan, as
+        move_base hands it to the local planner (and RViz shows it)."""
+        return self.plan.copy()
 
     def receive_map(self, grid: OccupancyGrid) -> None:
         """The world's map, as map_server latches /map: the global costmap's static layer.

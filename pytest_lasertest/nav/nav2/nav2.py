@@ -42,6 +42,7 @@ from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import place
 from pytest_lasertest.nav.move_base.costmap import LETHAL
 from pytest_lasertest.nav.move_base.navfn import windowed_plan
+from pytest_lasertest.nav.move_base.publisher import published
 from pytest_lasertest.nav.nav2.behaviors import BackUp, Spin, Wait
 from pytest_lasertest.nav.nav2.collision_monitor import approach, scan_points
 from pytest_lasertest.nav.nav2.costmap import Nav2Costmap
@@ -104,6 +105,15 @@ class Nav2:
         self._retries = 0  # the tree's RecoveryNode retries used
         self._tried = 0  # actions of the round robin failed in a row
         self._follow_retried = False  # FollowPath's RecoveryNode retry used
+
+    def published_costmap(self) -> OccupancyGrid | None:
+        """The global costmap as Nav2's global_costmap node publishes it on
+        global_costmap/costmap (`publisher.py`); none before the first scan."""
+        return None if self._global is None else published(self._global)
+
+    def published_plan(self) -> FloatArray:
+        """The global plan (N, 2) m the planner server last published on /plan."""
+        return self.plan.copy()
 
     def receive_map(self, grid: OccupancyGrid) -> None:
         """The world's map, as map_server latches /map: the global costmap's static layer, if

@@ -27,11 +27,13 @@ if TYPE_CHECKING:
 
 
 class ItemFailure(Exception):
-    """An item's failure, with the report that explains it in full."""
+    """An item's failure, with the report that explains it in full, and the files written
+    below --laser-artifacts for it (pytest-html shows them: `plugin/html.py`)."""
 
-    def __init__(self, report: str) -> None:
+    def __init__(self, report: str, artifacts: tuple[Path, ...] = ()) -> None:
         super().__init__(report.partition("\n")[0])
         self.report = report
+        self.artifacts = artifacts
 
 
 class PairItem(pytest.Item):

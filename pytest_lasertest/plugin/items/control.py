@@ -41,7 +41,7 @@ class ControlItem(PairItem):
             *drive_properties(drives),
         ]
         if drives.fails(self.options.policy):
-            artifacts = self._write(drives).lines("artifact", self.replay.here)
+            written = self._write(drives)
             headline, details = _verdict(drives)
             raise ItemFailure(
                 drive_report(
@@ -49,10 +49,11 @@ class ControlItem(PairItem):
                     self.pair,
                     self.controller,
                     drives,
-                    [*details, *artifacts],
+                    [*details, *written.lines("artifact", self.replay.here)],
                     self.options.policy,
                     self.replay,
-                )
+                ),
+                written.written,
             )
 
     def _write(self, drives: PairDrive) -> Artifacts:
@@ -63,7 +64,13 @@ class ControlItem(PairItem):
         from pytest_lasertest.artifacts.evidence import write_control_evidence
 
         return write_control_evidence(
-            options.artifacts, self.nodeid, self.spec, self.pair, drives, options.recorded()
+            options.artifacts,
+            self.nodeid,
+            self.spec,
+            self.pair,
+            drives,
+            options.recorded(),
+            self.controller,
         )
 
 

@@ -27,7 +27,8 @@ class CoverageItem(PairItem):
         ]
         if comparison.losses:
             artifact = self._write_evidence(comparison)
-            raise ItemFailure(coverage_report(self.pair, comparison, self.replay, artifact))
+            report = coverage_report(self.pair, comparison, self.replay, artifact)
+            raise ItemFailure(report, artifact.written)
 
     def _write_evidence(self, comparison: CoverageComparison) -> Artifacts:
         """The numbers of the loss, if the run asked for artifacts."""

@@ -124,7 +124,8 @@ class SearchItem(PairItem):
             if failed.result.classification == "regression"
             else (),
         )
-        raise ItemFailure(failure_report(failure, self.replay, self._write_failure(failure)))
+        artifacts = self._write_failure(failure)
+        raise ItemFailure(failure_report(failure, self.replay, artifacts), artifacts.written)
 
     def _reject(self, witness: Witness, verification: Verification) -> None:
         """Fail the item with the witness the solver should not have returned."""
@@ -141,7 +142,7 @@ class SearchItem(PairItem):
                 options.artifacts, self.nodeid, witness, verification, header
             )
         report = rejection_report(self.pair, witness, verification, self.replay, artifacts)
-        raise ItemFailure(report)
+        raise ItemFailure(report, artifacts.written)
 
     def _database(self) -> Path:
         """Where Hypothesis keeps the failures it found, to replay them first next run."""
