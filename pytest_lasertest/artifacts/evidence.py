@@ -55,9 +55,7 @@ def write_evidence(directory: Path, failure: PlacementFailure) -> Artifacts:
     result = failure.result
     runs, note = driven_again((result.baseline, result.candidate), failure.controller)
     obstacle = result.placement.obstacle
-    pinned = PinnedPlacement(
-        obstacle, failure.seed, failure.result.placement.direction, Location(repro, 1)
-    )
+    pinned = PinnedPlacement(obstacle, failure.seed, result.placement.direction, Location(repro, 1))
     header = [
         f"The minimal failure of {failure.nodeid}, pinned.",
         "Collect this file on its own to replay it; commit it (or copy its pair into your",

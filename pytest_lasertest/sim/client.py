@@ -108,7 +108,10 @@ class PhysicsWorld:
             self.body = body
             husky = body.kind == "husky"
             self.robot = self._load_husky(start) if husky else self._load_built(start)
-            self._wheels = (LEFT_WHEELS, RIGHT_WHEELS) if husky else wheel_joints(body)
+            lefts, rights = (LEFT_WHEELS, RIGHT_WHEELS) if husky else wheel_joints(body)
+            # Made once: `step` runs at every physics step.
+            self._wheels, self._sides = lefts + rights, (len(lefts), len(rights))
+            self._torques = (WHEEL_TORQUE,) * len(self._wheels)
             self.obstacles = tuple(self._add_obstacle(obstacle) for obstacle in obstacles)
             self._circles = [(o.x, o.y, o.bounding_radius) for o in obstacles]
             self._reach = self._robot_reach(start)
@@ -138,13 +141,13 @@ class PhysicsWorld:
     def step(self, left: float, right: float) -> None:
         """Drive the left and right wheels at these speeds (rad/s) for one time step."""
         pybullet = self._pybullet
-        lefts, rights = self._wheels
+        lefts, rights = self._sides
         pybullet.setJointMotorControlArray(
             self.robot,
-            lefts + rights,
+            self._wheels,
             pybullet.VELOCITY_CONTROL,
-            targetVelocities=(left,) * len(lefts) + (right,) * len(rights),
-            forces=(WHEEL_TORQUE,) * (len(lefts) + len(rights)),
+            targetVelocities=(left,) * lefts + (right,) * rights,
+            forces=self._torques,
             physicsClientId=self._client,
         )
         pybullet.stepSimulation(physicsClientId=self._client)

@@ -94,6 +94,22 @@ def test_a_name_written_in_place_names_the_robot(tmp_path: Path) -> None:
     assert spec.robot.name == "R1"
 
 
+def wheel(name: str, y: float) -> str:
+    """A wheel's link, a cylinder 0.2 m across turned onto its side, and the continuous joint
+    that puts it `y` m left of base_link."""
+    return f"""<link name="{name}">
+    <collision>
+      <origin rpy="1.5708 0 0"/>
+      <geometry><cylinder radius="0.1" length="0.05"/></geometry>
+    </collision>
+  </link>
+  <joint name="{name}_joint" type="continuous">
+    <parent link="base_link"/>
+    <child link="{name}"/>
+    <origin xyz="0 {y:g} 0"/>
+  </joint>"""
+
+
 # ROBOT with collision geometry: a 0.2 m high chassis box whose top is 0.3 m up, wheels
 # (cylinders turned onto their sides, 0.2 m across) and the laser's 5 cm box, topping out at
 # 0.3 + 0.025 m.
@@ -105,17 +121,8 @@ COLLIDING = ROBOT.replace(
       <geometry><box size="0.6 0.4 0.2"/></geometry>
     </collision>
   </link>
-  <link name="wheel">
-    <collision>
-      <origin rpy="1.5708 0 0"/>
-      <geometry><cylinder radius="0.1" length="0.05"/></geometry>
-    </collision>
-  </link>
-  <joint name="wheel_joint" type="continuous">
-    <parent link="base_link"/>
-    <child link="wheel"/>
-    <origin xyz="0 0.22 0"/>
-  </joint>""",
+  """
+    + wheel("wheel", 0.22),
 ).replace(
     '<link name="laser"/>',
     """<link name="laser">
@@ -157,19 +164,7 @@ def test_a_wheel_on_its_side_reaches_up_by_its_radius_and_a_tall_one_by_half_its
 
 # COLLIDING with a second wheel, on the right: the pair a differential base rolls on.
 ON_TWO_WHEELS = COLLIDING.replace(
-    '<link name="laser">',
-    """<link name="right_wheel">
-    <collision>
-      <origin rpy="1.5708 0 0"/>
-      <geometry><cylinder radius="0.1" length="0.05"/></geometry>
-    </collision>
-  </link>
-  <joint name="right_wheel_joint" type="continuous">
-    <parent link="base_link"/>
-    <child link="right_wheel"/>
-    <origin xyz="0 -0.22 0"/>
-  </joint>
-  <link name="laser">""",
+    '<link name="laser">', wheel("right_wheel", -0.22) + '\n  <link name="laser">'
 )
 
 
