@@ -15,7 +15,7 @@ import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, Point2D
 from pytest_lasertest.model.walls import Walls
-from pytest_lasertest.nav.move_base.costmap import FREE, LETHAL
+from pytest_lasertest.nav.move_base.cost_values import FREE, LETHAL
 from pytest_lasertest.nav.move_base.navfn import NavfnSettings, plan_path
 
 # How much further than its turning radius the route keeps the robot from every wall: its

@@ -13,7 +13,7 @@ from pytest_lasertest.pairsfile import Pair
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.reports.formats import Replay, run_line
 from pytest_lasertest.search.drives import PairDrive
-from pytest_lasertest.sim.guard import Frame
+from pytest_lasertest.sim.faults import Frame
 from pytest_lasertest.sim.scenario import ControllerError, Run
 
 # What each class of failure means for the change.

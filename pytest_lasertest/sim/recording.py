@@ -12,7 +12,8 @@ import numpy as np
 from pytest_lasertest.model.geometry import FloatArray
 from pytest_lasertest.model.occupancy import OccupancyGrid
 from pytest_lasertest.nav.protocol import LaserScan
-from pytest_lasertest.sim.guard import ControllerFault, Faulted, Guard, shown
+from pytest_lasertest.sim.faults import ControllerFault, Faulted, shown
+from pytest_lasertest.sim.guard import Guard
 
 # How often the controller's costmap and plan are taken. Often enough to watch a costmap grow in
 # RViz or Foxglove; a costmap of the paper's 44 m window is 0.8 MB a message.

@@ -40,7 +40,8 @@ from pytest_lasertest.model.walls import Walls
 from pytest_lasertest.nav.protocol import ControllerFactory, LaserScan, Odometry
 from pytest_lasertest.sim.client import PhysicsClient, PhysicsWorld
 from pytest_lasertest.sim.drive import Drive, Twist, drive_step
-from pytest_lasertest.sim.guard import ControllerFault, Faulted, Guard
+from pytest_lasertest.sim.faults import ControllerFault, Faulted
+from pytest_lasertest.sim.guard import Guard
 from pytest_lasertest.sim.lidar import FlatLidar, noisy, ranges_from_fractions, scan_rays
 from pytest_lasertest.sim.oracles import Referee, Rules, Verdicts
 from pytest_lasertest.sim.recording import Recorder, Recording

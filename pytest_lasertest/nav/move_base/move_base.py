@@ -41,13 +41,8 @@ import numpy as np
 from pytest_lasertest.model.geometry import FloatArray, Point2D
 from pytest_lasertest.model.occupancy import OccupancyGrid
 from pytest_lasertest.model.robot import Robot
-from pytest_lasertest.nav.move_base.costmap import (
-    LETHAL,
-    Costmap,
-    CostmapSettings,
-    InflationCost,
-    StaticLayerSettings,
-)
+from pytest_lasertest.nav.move_base.cost_values import LETHAL
+from pytest_lasertest.nav.move_base.costmap import Costmap, CostmapSettings, InflationCost
 from pytest_lasertest.nav.move_base.dwa import LocalPlanner, Surroundings
 from pytest_lasertest.nav.move_base.navfn import windowed_plan
 from pytest_lasertest.nav.move_base.publisher import published
@@ -59,6 +54,7 @@ from pytest_lasertest.nav.move_base.recovery import (
     RotateInPlace,
 )
 from pytest_lasertest.nav.move_base.settings import NavigationSettings, global_costmap_size
+from pytest_lasertest.nav.move_base.static_layer import StaticLayerSettings
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 
 # base_local_planner's prunePlan drops the plan up to its first point this near the robot.

@@ -43,7 +43,8 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FloatArray, IntArray
-from pytest_lasertest.nav.move_base.costmap import INSCRIBED, UNKNOWN, Costmap
+from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, UNKNOWN
+from pytest_lasertest.nav.move_base.costmap import Costmap
 
 SCALE = 1000  # potential units per navfn cost unit and cell stepped
 UNREACHABLE = int(np.iinfo(np.intp).max)  # the potential of a cell no path reaches

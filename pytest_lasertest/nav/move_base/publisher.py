@@ -14,7 +14,8 @@ from __future__ import annotations
 import numpy as np
 
 from pytest_lasertest.model.occupancy import OccupancyGrid
-from pytest_lasertest.nav.move_base.costmap import FREE, INSCRIBED, LETHAL, UNKNOWN, Costmap
+from pytest_lasertest.nav.move_base.cost_values import FREE, INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.costmap import Costmap
 
 
 def _translation() -> np.ndarray:

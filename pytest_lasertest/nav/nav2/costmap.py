@@ -7,7 +7,8 @@ from raytrace_min_range to raytrace_max_range. The inflation layer's cost is the
 from __future__ import annotations
 
 from pytest_lasertest.model.geometry import FloatArray
-from pytest_lasertest.nav.move_base.costmap import FREE, LETHAL, Costmap, CostmapSettings
+from pytest_lasertest.nav.move_base.cost_values import FREE, LETHAL
+from pytest_lasertest.nav.move_base.costmap import Costmap, CostmapSettings
 from pytest_lasertest.nav.nav2.mppi import CostGrid
 from pytest_lasertest.nav.nav2.obstacle_layer import (
     Marking,

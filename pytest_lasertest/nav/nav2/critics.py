@@ -15,7 +15,7 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import IntArray
-from pytest_lasertest.nav.move_base.costmap import INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
 from pytest_lasertest.nav.nav2.mppi import F32, CriticData, MppiSettings
 
 

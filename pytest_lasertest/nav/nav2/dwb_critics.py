@@ -49,7 +49,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from pytest_lasertest.nav.move_base.costmap import INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
 from pytest_lasertest.nav.nav2.mppi import CostGrid
 
 F64 = npt.NDArray[np.float64]

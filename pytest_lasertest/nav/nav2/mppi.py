@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from pytest_lasertest.nav.move_base.costmap import INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
 from pytest_lasertest.nav.nav2.noise import NoiseDrawer
 
 F32 = npt.NDArray[np.float32]

@@ -25,8 +25,8 @@ it starts free, as an open field's map would make it, and without one it may tra
 space (NavFn then keeps to the cells the scans have cleared, which rays that return nothing
 never clear); given the world's map (`receive_map`), its static layer holds the map, under the
 obstacle layer (`move_base/costmap.py`), and it tracks unknown space as configured; NavFn
-searches a window 5 m around the robot and its goal; goals have no heading. The README lists
-the rest.
+searches a window 5 m around the robot and its goal; goals have no heading.
+docs/explanation/navigation.md lists the rest.
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ from pytest_lasertest.model.geometry import FloatArray, Point2D
 from pytest_lasertest.model.occupancy import OccupancyGrid
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import place
-from pytest_lasertest.nav.move_base.costmap import LETHAL
+from pytest_lasertest.nav.move_base.cost_values import LETHAL
 from pytest_lasertest.nav.move_base.navfn import windowed_plan
 from pytest_lasertest.nav.move_base.publisher import published
 from pytest_lasertest.nav.nav2.behaviors import BackUp, Spin, Wait

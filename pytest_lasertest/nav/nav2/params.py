@@ -21,7 +21,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from pytest_lasertest.model.robot import ParameterValue
-from pytest_lasertest.nav.move_base.costmap import StaticLayerSettings
+from pytest_lasertest.nav.move_base.static_layer import StaticLayerSettings
 from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings
 from pytest_lasertest.nav.nav2.costmap_params import has_static_layer, read_costmap
 from pytest_lasertest.nav.nav2.dwb import CRITICS as DWB_CRITICS
@@ -37,7 +37,8 @@ Parameter = tuple[str, str, ParameterValue]
 MPPI = "nav2_mppi_controller::MPPIController"
 DWB = "dwb_core::DWBLocalPlanner"
 NAVFN = "nav2_navfn_planner::NavfnPlanner"
-# Read but not imitated, for a reason the README gives: the routes here have no goal heading.
+# Read but not imitated, for a reason docs/explanation/navigation.md gives: the routes here
+# have no goal heading.
 NOT_IMITATED_CRITICS = frozenset({"GoalAngleCritic"})
 
 

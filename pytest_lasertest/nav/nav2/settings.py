@@ -11,8 +11,9 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from pytest_lasertest.nav.move_base.costmap import CostmapSettings, StaticLayerSettings
+from pytest_lasertest.nav.move_base.costmap import CostmapSettings
 from pytest_lasertest.nav.move_base.navfn import NavfnSettings
+from pytest_lasertest.nav.move_base.static_layer import StaticLayerSettings
 from pytest_lasertest.nav.nav2.behaviors import BehaviorSettings
 from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings
 from pytest_lasertest.nav.nav2.critics import (

@@ -8,10 +8,8 @@ import math
 import numpy as np
 import pytest
 
+from pytest_lasertest.nav.move_base.cost_values import FREE, INSCRIBED, LETHAL
 from pytest_lasertest.nav.move_base.costmap import (
-    FREE,
-    INSCRIBED,
-    LETHAL,
     Costmap,
     CostmapSettings,
     lethal_distances,

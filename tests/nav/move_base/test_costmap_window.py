@@ -8,15 +8,8 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from pytest_lasertest.nav.move_base.costmap import (
-    FREE,
-    INSCRIBED,
-    LETHAL,
-    UNKNOWN,
-    Costmap,
-    CostmapSettings,
-    lethal_distances,
-)
+from pytest_lasertest.nav.move_base.cost_values import FREE, INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.costmap import Costmap, CostmapSettings, lethal_distances
 from tests.helpers.costmap import cost_at, scan
 
 # Inscribed radius 0.32 m: not a whole number of 5 cm cells, so no distance ties with it.

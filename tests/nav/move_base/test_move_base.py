@@ -19,7 +19,7 @@ from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.nav.move_base import MoveBase
-from pytest_lasertest.nav.move_base.costmap import LETHAL
+from pytest_lasertest.nav.move_base.cost_values import LETHAL
 from pytest_lasertest.nav.move_base.settings import NavigationSettings, Parameter
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 from pytest_lasertest.pairsfile import load_pairs_file

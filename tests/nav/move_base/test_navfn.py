@@ -10,7 +10,7 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from pytest_lasertest.nav.move_base.costmap import FREE, INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.cost_values import FREE, INSCRIBED, LETHAL, UNKNOWN
 from pytest_lasertest.nav.move_base.navfn import (
     SCALE,
     UNREACHABLE,

@@ -9,7 +9,8 @@ import numpy.typing as npt
 import pytest
 
 from pytest_lasertest.model.geometry import FloatArray
-from pytest_lasertest.nav.move_base.costmap import FREE, LETHAL, UNKNOWN, Costmap, CostmapSettings
+from pytest_lasertest.nav.move_base.cost_values import FREE, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.costmap import Costmap, CostmapSettings
 from pytest_lasertest.nav.move_base.recovery import (
     BackUp,
     ClearCostmap,

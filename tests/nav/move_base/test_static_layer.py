@@ -15,16 +15,9 @@ from pytest_lasertest.model.occupancy import FREE as MAP_FREE
 from pytest_lasertest.model.occupancy import OCCUPIED, OccupancyGrid, rasterised
 from pytest_lasertest.model.occupancy import UNKNOWN as MAP_UNKNOWN
 from pytest_lasertest.nav.move_base import MoveBase
-from pytest_lasertest.nav.move_base.costmap import (
-    FREE,
-    INSCRIBED,
-    LETHAL,
-    UNKNOWN,
-    Costmap,
-    CostmapSettings,
-    StaticLayerSettings,
-    with_max,
-)
+from pytest_lasertest.nav.move_base.cost_values import FREE, INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.costmap import Costmap, CostmapSettings
+from pytest_lasertest.nav.move_base.static_layer import StaticLayerSettings, with_max
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 from pytest_lasertest.pairsfile import load_pairs_file
 from tests.helpers import EXAMPLES

@@ -9,7 +9,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from pytest_lasertest.nav.move_base.costmap import INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
 from pytest_lasertest.nav.nav2.dwb import (
     DwbController,
     DwbSettings,

@@ -12,7 +12,8 @@ import pytest
 from pytest_lasertest.model.geometry import Point2D
 from pytest_lasertest.model.obstacles import Cylinder
 from pytest_lasertest.model.robot import Robot
-from pytest_lasertest.nav.move_base.costmap import LETHAL, CostmapSettings
+from pytest_lasertest.nav.move_base.cost_values import LETHAL
+from pytest_lasertest.nav.move_base.costmap import CostmapSettings
 from pytest_lasertest.nav.nav2.costmap import Nav2Costmap
 from pytest_lasertest.nav.nav2.nav2 import Nav2
 from pytest_lasertest.nav.nav2.obstacle_layer import ObservationSource

@@ -12,7 +12,8 @@ import numpy as np
 from pytest_lasertest.model.geometry import FloatArray, Point2D
 from pytest_lasertest.model.obstacles import Box
 from pytest_lasertest.model.occupancy import OccupancyGrid, rasterised
-from pytest_lasertest.nav.move_base.costmap import FREE, LETHAL, UNKNOWN, StaticLayerSettings
+from pytest_lasertest.nav.move_base.cost_values import FREE, LETHAL, UNKNOWN
+from pytest_lasertest.nav.move_base.static_layer import StaticLayerSettings
 from pytest_lasertest.nav.nav2.nav2 import Nav2
 from pytest_lasertest.nav.nav2.params import configure
 from pytest_lasertest.nav.nav2.settings import Nav2Settings
