@@ -1,6 +1,7 @@
 """The `lasertest` command: `plan` finds placements, `explain` shows which beams read one of them,
 `profile` shows the laser the gate reads from a robot description (or infers from a bag),
-`catalogue` lists scanner models, `doctor` checks the installation."""
+`catalogue` lists scanner models, `schema` prints the pairs file's JSON Schema, `doctor` checks
+the installation."""
 
 from __future__ import annotations
 
@@ -11,7 +12,13 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from pytest_lasertest.cli.commands import print_catalogue, print_explain, print_plan, print_profile
+from pytest_lasertest.cli.commands import (
+    print_catalogue,
+    print_explain,
+    print_plan,
+    print_profile,
+    print_schema,
+)
 from pytest_lasertest.cli.doctor import run_doctor
 from pytest_lasertest.cli.errors import (
     EXIT_ERROR,
@@ -57,6 +64,10 @@ def _parser() -> Parser:
     add_profile_parser(commands)
     catalogue = commands.add_parser("catalogue", help="list the scanner models `model:` can name")
     catalogue.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    schema = commands.add_parser("schema", help="print the pairs file's JSON Schema")
+    schema.add_argument(
+        "--path", action="store_true", help="print where the installed schema file is instead"
+    )
     commands.add_parser("doctor", help="check the installation and say what to fix")
     return parser
 
@@ -71,6 +82,8 @@ def _run(args: argparse.Namespace) -> int:
         return print_profile(args)
     if args.command == "catalogue":
         return print_catalogue(as_json=args.json)
+    if args.command == "schema":
+        return print_schema(path=args.path)
     return run_doctor()
 
 

@@ -1,5 +1,6 @@
-"""The `lasertest` verbs that read files and print what they find: `plan`, `explain`, `profile`
-and `catalogue`. Each returns the command's exit status; what it prints comes from `reports/`."""
+"""The `lasertest` verbs that read files and print what they find: `plan`, `explain`, `profile`,
+`catalogue` and `schema`. Each returns the command's exit status; what it prints comes from
+`reports/`."""
 
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ from pytest_lasertest.model.plan import PairPlan
 from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
 from pytest_lasertest.pairsfile.catalogue import load_catalogue
 from pytest_lasertest.pairsfile.controller import default_controller
+from pytest_lasertest.pairsfile.schema import SHIPPED, schema_text
 from pytest_lasertest.reports.catalogue import ModelFigures, catalogue_table
 from pytest_lasertest.reports.formats import json_text
 
@@ -135,6 +137,12 @@ def print_catalogue(*, as_json: bool) -> int:
         print(json_text([dataclasses.asdict(row) for row in rows]))
     else:
         print(catalogue_table(rows))
+    return 0
+
+
+def print_schema(*, path: bool) -> int:
+    """Print the pairs file's JSON Schema, or where the installed package keeps it."""
+    print(SHIPPED if path else schema_text(), end="\n" if path else "")
     return 0
 
 

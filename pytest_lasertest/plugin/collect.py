@@ -98,7 +98,7 @@ class PairFile(pytest.File):
             self.warn(
                 UnreadParametersWarning(
                     "the Nav2 imitation does not read these parameters of the params file "
-                    f'(the README\'s "The navigation stack" says what it imitates):\n  {lines}'
+                    f"(docs/explanation/navigation.md says what it imitates):\n  {lines}"
                 )
             )
 

@@ -2,8 +2,9 @@
 
 Three scans are explained: the detector's and the misser's at the witness's anchor pose, and the
 misser's last scan at or before the witness's `until` instant. The JSON is a stable contract
-(documented in the README): `{"pair", "witness", "obstacle", "scans": [{"scanner", "role",
-"time", "pose", "hits": [{"beam", "angle", "range"}], "too_near", "misses", "clearance"}]}`.
+(documented in docs/reference/cli.md): `{"pair", "witness", "obstacle", "scans": [{"scanner",
+"role", "time", "pose", "hits": [{"beam", "angle", "range"}], "too_near", "misses",
+"clearance"}]}`.
 """
 
 from __future__ import annotations

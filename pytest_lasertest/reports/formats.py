@@ -1,7 +1,7 @@
 """The shared formats of what reports show: obstacles, scanner profiles, witnesses and runs;
 how to run an item again; which artifacts a failure wrote and which it could not.
 
-The JSON forms are stable contracts (documented in the README): `lasertest plan --json`,
+The JSON forms are stable contracts (documented in docs/reference/cli.md): `lasertest plan --json`,
 `lasertest profile --json` and the artifacts' JSON files all write obstacles, profiles and
 witnesses this way, as standard JSON (`json_text`).
 """

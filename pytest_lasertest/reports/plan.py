@@ -1,6 +1,6 @@
 """What `lasertest plan` prints: the witnesses of every pair, as text or as the JSON contract.
 
-The JSON is a stable contract (documented in the README):
+The JSON is a stable contract (documented in docs/reference/cli.md):
 `{"pairs": [{"name", "status", "explanation", "baseline", "candidate", "start", "goal", "path",
 "witnesses": [{"id", "direction", "obstacle", "pose", "detected_by", "margin", "lead",
 "late"}]}]}`.

@@ -24,6 +24,7 @@ from pytest_lasertest.pairsfile.placements import PinnedPlacement, obstacle_fiel
 from tests.helpers import EXAMPLES
 from tests.helpers.git import commit_everything
 from tests.helpers.model import RECORDED
+from tests.helpers.schema import schema_errors
 from tests.helpers.texts import MY_ROBOT, PAIRS, ROBOT, VALID_PAIRS, write
 
 HEADER = ("lasertest repro of gate.lasertest.yaml::size[candidate-misses-0]", "replay: pytest X")
@@ -392,6 +393,7 @@ def test_a_scanner_read_from_a_description_is_pinned_as_the_profile_it_read(
     text = repro_yaml(original, pair, pinned_for(pair), destination, ())
     assert text.startswith("# baseline: front in robot.urdf at HEAD (")
     assert "urdf" not in yaml.safe_load(text)["pairs"]["swap"]["candidate"]
+    assert schema_errors(text) == []  # an editor opens it without a complaint
     # The description moves on; the repro keeps what was read.
     (tmp_path / "robot.urdf").unlink()
     destination.parent.mkdir()
@@ -478,3 +480,4 @@ def test_a_body_read_from_the_description_replays_as_read_after_the_description_
     assert body["collisions"][0]["box"] == {"size": [0.6, 0.4, 0.2]}
     # It rolls on the wheels it rolled on.
     assert [c.get("wheel", False) for c in body["collisions"]] == [False, True, True]
+    assert schema_errors(destination.read_text()) == []  # an editor opens it without a complaint

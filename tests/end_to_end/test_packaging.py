@@ -109,7 +109,9 @@ def test_a_pytest_run_without_pairs_files_loads_no_solver_or_simulator(
     pytester.runpytest_subprocess("-p", "no:hypothesispytest").assert_outcomes(passed=1)
 
 
-def test_the_wheel_ships_the_robots_the_catalogue_and_the_entry_points(tmp_path: Path) -> None:
+def test_the_wheel_ships_the_robots_the_catalogue_the_schema_and_the_entry_points(
+    tmp_path: Path,
+) -> None:
     subprocess.run(
         [
             sys.executable,
@@ -132,6 +134,7 @@ def test_the_wheel_ships_the_robots_the_catalogue_and_the_entry_points(tmp_path:
         for part in ("robot", "navigation", "nav2"):
             assert f"pytest_lasertest/robots/{robot}/{part}.yaml" in names
     assert "pytest_lasertest/py.typed" in names
+    assert "pytest_lasertest/pairsfile/schema/pairs-file.schema.json" in names
     assert len([n for n in names if n.startswith("pytest_lasertest/robots/lidars/")]) >= 10
     (entry_points,) = [n for n in names if n.endswith(".dist-info/entry_points.txt")]
     text = zipfile.ZipFile(wheel).read(entry_points).decode()

@@ -3,7 +3,7 @@ arrays, what is cast when) must leave every run bit for bit as it was.
 
 Each digest hashes a run's times, poses and commands. A change that alters them on purpose (the
 noise stream, a planner's rounding) must say so and show that the examples' outcomes stay the
-same (README, "Performance"); then print the new digests with
+same (docs/explanation/performance.md); then print the new digests with
 
     python -c "from tests.sim.test_digests import print_digests; print_digests()"
 
