@@ -28,6 +28,12 @@ from pytest_lasertest.plugin.options import (
 )
 from pytest_lasertest.plugin.session import SEED_INPUT, LaserSession, XdistHooks
 
+# Where a failing item's artifacts go beside pytest-html's report when no directory is named.
+# Hidden: pytest recurses into no `.*` directory (its default norecursedirs), so the next run
+# does not collect their repro pairs files, while their replay commands, which name the file,
+# still run.
+HTML_ARTIFACTS = ".lasertest-artifacts"
+
 
 def pytest_addhooks(pluginmanager: pytest.PytestPluginManager) -> None:
     from pytest_lasertest.plugin import hookspecs
@@ -78,7 +84,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         default=None,
         metavar="DIR",
         help="write the evidence of every failing item below DIR: a PNG, a pairs file that "
-        "replays it, a Gazebo world and a JSON file with every number.",
+        "replays it, a Gazebo world, a JSON file with every number and a rosbag2 of both "
+        f"robots. With pytest-html's --html and no DIR: {HTML_ARTIFACTS}/ beside the report.",
     )
     group.addoption(
         "--laser-summary",
@@ -163,7 +170,7 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
         workerinput = getattr(config, "workerinput", {})
         seed = workerinput[SEED_INPUT] if SEED_INPUT in workerinput else fresh_seed()
     profile = config.getoption("laser_profile")
-    artifacts = config.getoption("laser_artifacts")
+    artifacts = config.getoption("laser_artifacts") or beside_html_report(config)
     examples = config.getoption("laser_examples")
     summary = config.getoption("laser_summary")
     return LaserOptions(
@@ -181,6 +188,13 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
             parse_summary(summary, config.invocation_params.dir) if summary is not None else None
         ),
     )
+
+
+def beside_html_report(config: pytest.Config) -> str | None:
+    """Where artifacts go when pytest-html writes a report (`--html`) and `--laser-artifacts`
+    names no directory: beside the report, whose failing items then show their pictures."""
+    report = getattr(config.option, "htmlpath", None)
+    return None if not report else str(Path(report).parent / HTML_ARTIFACTS)
 
 
 def collection_args(

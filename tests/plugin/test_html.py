@@ -1,5 +1,5 @@
 """pytest-html: a failing item's picture shown inline in the HTML report, and a link to each of
-its other artifacts; nothing when the run writes no artifacts."""
+its other artifacts, written beside the report when --laser-artifacts names no directory."""
 
 from __future__ import annotations
 
@@ -49,10 +49,21 @@ def test_a_failing_item_s_picture_is_inline_in_the_html_report_with_links_to_the
     }
 
 
-def test_without_artifacts_the_html_report_carries_no_extras(
+def test_without_laser_artifacts_the_html_report_shows_pictures_written_beside_it(
     pytester: pytest.Pytester, paper: Path
 ) -> None:
     (pytester.path / "examples").mkdir()
     paper.rename(pytester.path / "examples" / paper.name)
-    pytester.runpytest(*RUN, "--html=report.html").assert_outcomes(failed=1)
-    assert all(not entry["extras"] for entry in results(pytester.path / "report.html"))
+    result = pytester.runpytest(*RUN, "--html=reports/report.html")
+    result.assert_outcomes(failed=1)
+    beside = pytester.path / "reports/.lasertest-artifacts/examples/paper.lasertest.yaml"
+    result.stdout.fnmatch_lines([f"lasertest: * artifacts in {beside.parents[1]}"])
+    (call,) = [entry for entry in results(pytester.path / "reports/report.html") if entry["extras"]]
+    names = {str(extra["name"]) for extra in call["extras"]}  # type: ignore[union-attr]
+    assert "distance_no-obstacle.png" in names
+    assert (beside / "distance_no-obstacle.png").is_file()
+    # A repro written there (as a placement item's is) is not collected by the next run.
+    repro = beside / "size_candidate-misses-0.lasertest.yaml"
+    repro.write_text((pytester.path / "examples" / paper.name).read_text())
+    assert "::size[" not in pytester.runpytest("--collect-only", "-q", "reports").stdout.str()
+    assert "::size[" in pytester.runpytest("--collect-only", "-q", str(repro)).stdout.str()
