@@ -6,7 +6,9 @@ Written with rosbags, the library the gate already reads recordings with: pure P
 2's message definitions built in (Jazzy's), so neither a ROS install nor a second library for
 the same format. Topics, each robot's under its role (`baseline`, `candidate`):
 
-- `/tf_static`: base_footprint to the laser frame, each robot's mount;
+- `/tf_static`: base_footprint to the laser frame, both robots' mounts in one message, offered
+  with tf2_ros's StaticBroadcasterQoS (transient local, the last message kept), so that RViz
+  subscribing after `ros2 bag play` starts still gets both;
 - `/tf`: odom to base_footprint, at every physics step (both robots share the world's frame,
   `odom`, as they drove the same world);
 - `/<role>/odom` (nav_msgs/Odometry, at every physics step) and `/<role>/scan`
@@ -53,7 +55,7 @@ def write_bag(
     from rosbags.typesys import Stores, get_typestore
 
     build = _Builder(get_typestore(Stores.ROS2_JAZZY))
-    messages = [*build.markers(footprint, solids, tuple(runs))]
+    messages = [*build.markers(footprint, solids, tuple(runs)), build.mounts(runs)]
     for role, run in runs.items():
         messages += build.robot(role, run)
     messages.sort(key=lambda message: message[0])
@@ -78,11 +80,45 @@ def _write(path: Path, messages: list[Message], typestore: Any) -> None:
         connections: dict[str, Any] = {}
         for time, topic, msgtype, message in messages:
             if topic not in connections:
-                connections[topic] = writer.add_connection(topic, msgtype, typestore=typestore)
+                connections[topic] = writer.add_connection(
+                    topic, msgtype, typestore=typestore, offered_qos_profiles=_offered(topic)
+                )
             data = typestore.serialize_cdr(message, msgtype)
             writer.write(connections[topic], round(time * 1e9), data)
     finally:
         writer.close()
+
+
+def _offered(topic: str) -> tuple[Any, ...]:
+    """The QoS a topic's publisher offers, as rosbag2 records it for `ros2 bag play`: for
+    /tf_static tf2_ros's StaticBroadcasterQoS (ros2/geometry2 15b09edb,
+    tf2_ros/include/tf2_ros/qos.hpp: depth 1, transient local, reliable), else none recorded,
+    which plays with the player's defaults."""
+    if topic != "/tf_static":
+        return ()
+    from rosbags.interfaces import (
+        Qos,
+        QosDurability,
+        QosHistory,
+        QosLiveliness,
+        QosReliability,
+        QosTime,
+    )
+
+    infinite = QosTime(2147483647, 4294967295)  # rosbag2's "infinite" duration
+    return (
+        Qos(
+            QosHistory.KEEP_LAST,
+            1,
+            QosReliability.RELIABLE,
+            QosDurability.TRANSIENT_LOCAL,
+            infinite,
+            infinite,
+            QosLiveliness.AUTOMATIC,
+            infinite,
+            avoid_ros_namespace_conventions=False,
+        ),
+    )
 
 
 class _Builder:
@@ -94,8 +130,7 @@ class _Builder:
 
     def robot(self, role: str, run: Run) -> list[Message]:
         """Everything one robot published over its run."""
-        messages = [self.mount(role, run.scenario.profile.pose)]
-        messages += self.motion(role, run)
+        messages = list(self.motion(role, run))
         recording = run.recording
         if recording is None:
             return messages
@@ -105,10 +140,16 @@ class _Builder:
             messages += [self.plan(time, points) for time, points in recording.plans]
         return messages
 
-    def mount(self, role: str, pose: Pose3D) -> Message:
-        """/tf_static: the robot's base_footprint to its laser frame."""
-        transform = self.transform(0.0, f"{role}/base_footprint", f"{role}/laser", pose)
-        return 0.0, "/tf_static", "tf2_msgs/msg/TFMessage", self._tf([transform])
+    def mounts(self, runs: dict[str, Run]) -> Message:
+        """/tf_static: each robot's base_footprint to its laser frame, in one message, as
+        robot_state_publisher sends all of a robot's fixed joints."""
+        transforms = [
+            self.transform(
+                0.0, f"{role}/base_footprint", f"{role}/laser", run.scenario.profile.pose
+            )
+            for role, run in runs.items()
+        ]
+        return 0.0, "/tf_static", "tf2_msgs/msg/TFMessage", self._tf(transforms)
 
     def motion(self, role: str, run: Run) -> Iterator[Message]:
         """/tf and /<role>/odom at every physics step."""

@@ -109,10 +109,25 @@ def test_odometry_and_tf_follow_each_robot_at_every_physics_step(
         last = ours[-1].transform.translation
         assert (last.x, last.y) == pytest.approx(tuple(run.poses[-1, :2]))
         assert {t.header.frame_id for t in ours} == {"odom"}
-    mounts = [message.transforms[0] for _, message in read(bag, "/tf_static")]  # type: ignore[attr-defined]
-    assert {t.child_frame_id for t in mounts} == {"baseline/laser", "candidate/laser"}
+
+
+def test_both_mounts_are_one_static_message_offered_as_tf2_s_static_broadcaster_does(
+    bag: Path,
+) -> None:
+    # One message, kept for a late subscriber: RViz started after `ros2 bag play` gets both.
+    ((_, message),) = read(bag, "/tf_static")
+    mounts = {t.child_frame_id: t for t in message.transforms}  # type: ignore[attr-defined]
+    assert set(mounts) == {"baseline/laser", "candidate/laser"}
     height = DISTANCE.candidate.profile.pose.xyz[2]
-    assert mounts[0].transform.translation.z == pytest.approx(height)
+    assert mounts["candidate/laser"].transform.translation.z == pytest.approx(height)
+    with AnyReader([bag]) as reader:
+        (static,) = [c for c in reader.connections if c.topic == "/tf_static"]
+        (qos,) = static.ext.offered_qos_profiles  # type: ignore[union-attr]
+    assert (qos.depth, qos.durability.name, qos.reliability.name) == (
+        1,
+        "TRANSIENT_LOCAL",
+        "RELIABLE",
+    )
 
 
 def test_the_candidate_s_costmap_and_plan_come_once_a_simulated_second(
