@@ -91,7 +91,7 @@ def _write(path: Path, messages: list[Message], typestore: Any) -> None:
 
 def _offered(topic: str) -> tuple[Any, ...]:
     """The QoS a topic's publisher offers, as rosbag2 records it for `ros2 bag play`: for
-    /tf_static tf2_ros's StaticBroadcasterQoS (ros2/geometry2 15b09edb,
+    /tf_static tf2_ros's StaticBroadcasterQoS (ros2/geometry2 02849c04,
     tf2_ros/include/tf2_ros/qos.hpp: depth 1, transient local, reliable), else none recorded,
     which plays with the player's defaults."""
     if topic != "/tf_static":
