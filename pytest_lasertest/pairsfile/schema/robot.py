@@ -56,7 +56,7 @@ def _robot_terms() -> dict[str, Schema]:
     terms = {
         "name": text("How reports name the robot"),
         "body": _body(),
-        "laser_mount": mounted("Where the laser sits in base_link", ("xyz", "rpy")),
+        "laser_mount": mounted("Where the laser sits in the robot's base frame", ("xyz", "rpy")),
         "footprint": _footprint(),
         "max_linear_velocity": number(robot.SPEED, "Its top forward speed"),
         "max_linear_acceleration": number(robot.ACCELERATION, "How hard it speeds up and brakes"),
@@ -132,7 +132,7 @@ def _footprint() -> Schema:
         "items": {"type": "number", "minimum": -reach, "maximum": reach},
         "minItems": 2,
         "maxItems": 2,
-        "description": "A corner [x, y] in base_link (m)",
+        "description": "A corner [x, y] in the robot's base frame (m)",
     }
     return listing(
         "The convex outline around the base origin, as costmap_2d's `footprint`.",

@@ -44,7 +44,7 @@ def scanner() -> Schema:
         "bag": _bag(),
         **description_terms("the scanner"),
         **_profile_terms(),
-        "pose": mounted("Where the scanner sits in base_link; the robot's laser mount if left out"),
+        "pose": mounted("Where the scanner sits on the robot; the robot's laser mount if left out"),
     }
     keys = ("model", "bag", *DESCRIPTION_KEYS, *PROFILE_KEYS, "pose")
     return mapping(

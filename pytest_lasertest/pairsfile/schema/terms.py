@@ -70,11 +70,11 @@ def triple(unit: str, description: str) -> Schema:
 
 
 def mounted(description: str, required: Sequence[str] = ()) -> Schema:
-    """A pose in base_link as URDF writes an origin: `{xyz: [x, y, z], rpy: [r, p, y]}`."""
+    """A pose in the robot's base frame as URDF writes an origin: `{xyz: [...], rpy: [...]}`."""
     return mapping(
         description,
         {
-            "xyz": triple("m", "The position in base_link"),
+            "xyz": triple("m", "The position in the robot's base frame (base_footprint)"),
             "rpy": triple("rad", "Roll, pitch and yaw"),
         },
         required,
