@@ -142,7 +142,10 @@ def print_catalogue(*, as_json: bool) -> int:
 
 def print_schema(*, path: bool) -> int:
     """Print the pairs file's JSON Schema, or where the installed package keeps it."""
-    print(SHIPPED if path else schema_text(), end="\n" if path else "")
+    if path:
+        print(SHIPPED)
+    else:
+        print(schema_text(), end="")  # the text ends in its own newline
     return 0
 
 
