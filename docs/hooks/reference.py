@@ -23,5 +23,8 @@ def on_files(files: Files, config: Any, **_: Any) -> Files:
 
 
 def on_page_markdown(markdown: str, **_: Any) -> str:
-    """The page with the generated reference where its marker stands."""
+    """The page with the generated reference where its marker stands; the reference is made
+    only for the page that has one."""
+    if MARKER not in markdown:
+        return markdown
     return markdown.replace(MARKER, schema_reference(pairs_file_schema()))

@@ -25,6 +25,12 @@ from pytest_lasertest.pairsfile.schema.terms import (
     truth,
 )
 
+# A coordinate of a footprint corner or a collision shape (m): no farther from the base.
+_REACHED = {
+    "type": "number",
+    "minimum": -body.MAX_FOOTPRINT_REACH,
+    "maximum": body.MAX_FOOTPRINT_REACH,
+}
 # The fields a robot needs whatever gives its laser mount.
 ALWAYS_REQUIRED = tuple(
     key for key in robot.REQUIRED_KEYS if key not in ("name", "laser_mount", "body")
@@ -109,11 +115,10 @@ def _collision() -> Schema:
         names = SHAPE_SIZES[shape]
         lengths = {name: number(body.LENGTH, f"Its {name}") for name in names}
         shapes[shape] = mapping(f"A {shape}.", lengths, names)
-    reach = body.MAX_FOOTPRINT_REACH
     xyz = triple("m", "Its centre in base_footprint")
     terms = {
         **shapes,
-        "xyz": {**xyz, "items": {"type": "number", "minimum": -reach, "maximum": reach}},
+        "xyz": {**xyz, "items": _REACHED},
         "rpy": triple("rad", "Its roll, pitch and yaw; 0 0 0 when left out"),
         "wheel": truth("Whether the base rolls on it, about its axis; false when left out"),
     }
@@ -126,10 +131,9 @@ def _collision() -> Schema:
 
 
 def _footprint() -> Schema:
-    reach = body.MAX_FOOTPRINT_REACH
     corner = {
         "type": "array",
-        "items": {"type": "number", "minimum": -reach, "maximum": reach},
+        "items": _REACHED,
         "minItems": 2,
         "maxItems": 2,
         "description": "A corner [x, y] in the robot's base frame (m)",

@@ -39,11 +39,9 @@ def whole(low: int, high: int, description: str) -> Schema:
     return {"type": "integer", "minimum": low, "maximum": high, "description": description}
 
 
-def text(description: str, *, examples: Iterable[str] = (), pattern: str | None = None) -> Schema:
+def text(description: str, *, examples: Iterable[str] = ()) -> Schema:
     """A non-empty string; `examples` are what editors offer."""
     term: Schema = {"type": "string", "minLength": 1, "description": description}
-    if pattern is not None:
-        term["pattern"] = pattern
     listed = list(examples)
     return {**term, "examples": listed} if listed else term
 

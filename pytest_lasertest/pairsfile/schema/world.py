@@ -3,6 +3,7 @@ listed walls, an SDF world)."""
 
 from __future__ import annotations
 
+from pytest_lasertest.inputs.node import Bounds
 from pytest_lasertest.model.walls import WALL_HEIGHT
 from pytest_lasertest.pairsfile import walls, world
 from pytest_lasertest.pairsfile.schema.terms import (
@@ -46,20 +47,12 @@ def world_schema() -> Schema:
 
 
 def _pose() -> Schema:
-    terms = {
-        "x": number(world.COORDINATE, "x in the world frame"),
-        "y": number(world.COORDINATE, "y in the world frame"),
-        "yaw": number(world.YAW, "The heading; 0 when left out"),
-    }
+    terms = {**_xy(world.COORDINATE), "yaw": number(world.YAW, "The heading; 0 when left out")}
     return mapping("Where the robot starts.", terms, ("x", "y"))
 
 
 def _point(description: str) -> Schema:
-    terms = {
-        "x": number(world.COORDINATE, "x in the world frame"),
-        "y": number(world.COORDINATE, "y in the world frame"),
-    }
-    return mapping(f"{description}.", terms, ("x", "y"))
+    return mapping(f"{description}.", _xy(world.COORDINATE), ("x", "y"))
 
 
 def _box() -> Schema:
@@ -79,10 +72,7 @@ def _box() -> Schema:
 
 
 def _segment() -> Schema:
-    end = {
-        "x": number(walls.COORDINATE, "x in the world frame"),
-        "y": number(walls.COORDINATE, "y in the world frame"),
-    }
+    end = _xy(walls.COORDINATE)
     terms = {
         "from": mapping("One end.", end, ("x", "y")),
         "to": mapping("The other end.", end, ("x", "y")),
@@ -94,3 +84,8 @@ def _segment() -> Schema:
         keyed(walls.SEGMENT_KEYS, terms),
         ("from", "to", "thickness"),
     )
+
+
+def _xy(bounds: Bounds) -> dict[str, Schema]:
+    """A point's x and y in the world frame, within `bounds`."""
+    return {axis: number(bounds, f"{axis} in the world frame") for axis in ("x", "y")}
