@@ -17,7 +17,7 @@ from tests.helpers import REPO
 def test_importing_the_entry_point_loads_no_heavy_module() -> None:
     script = (
         "import pytest_lasertest.plugin, sys; print(sorted(m for m in "
-        "('z3', 'pybullet', 'hypothesis', 'numpy', 'yaml') if m in sys.modules))"
+        "('z3', 'pybullet', 'hypothesis', 'numpy', 'numba', 'yaml') if m in sys.modules))"
     )
     result = subprocess.run(
         [sys.executable, "-c", script], capture_output=True, text=True, check=True

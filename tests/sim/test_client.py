@@ -10,7 +10,12 @@ import pytest
 
 from pytest_lasertest.model.geometry import Pose2D
 from pytest_lasertest.model.obstacles import Box, Cylinder
-from pytest_lasertest.sim.client import PhysicsWorld, connected_clients
+from pytest_lasertest.sim.client import (
+    PhysicsClient,
+    PhysicsWorld,
+    connected_clients,
+    load_pybullet,
+)
 from tests.helpers.sim import TIME_STEP
 
 
@@ -72,3 +77,30 @@ def test_proximity_is_the_clearance_pybullet_measures_capped_at_the_horizon() ->
     assert clearance == pytest.approx(1.1 - 0.504, abs=0.01)
     assert not touching
     assert capped == 0.5
+
+
+def test_proximity_along_a_long_wall_is_what_asking_pybullet_about_every_obstacle_gives() -> None:
+    # A 12 m wall beside the route, another 4 m off it, and a block the robot passes: the
+    # obstacles near the robot are found again as it drives, and none that matters is missed.
+    wall, far = Box(6.0, 0.8, 0.0, 12.0, 0.1, 1.0), Box(6.0, -4.0, 0.0, 12.0, 0.1, 1.0)
+    block = Box(3.0, -0.9, 0.0, 0.4, 0.4, 1.0)
+    pybullet, measured = load_pybullet(), []
+    with (
+        PhysicsClient() as client,
+        PhysicsWorld(Pose2D(0.0, 0.0, 0.0), (wall, far, block), TIME_STEP, client) as world,
+    ):
+        for _ in range(500):
+            world.step(6.0, 6.0)
+            clearance, _ = world.proximity(world.base_pose(), within=0.5)
+            every = [
+                point[8]
+                for body in world.obstacles
+                for point in pybullet.getClosestPoints(
+                    world.robot, body, 0.5, physicsClientId=client.id
+                )
+            ]
+            assert clearance == min(every, default=0.5)
+            measured.append(clearance)
+        travelled = world.base_pose()[0]
+    assert travelled > 4.0
+    assert min(measured) < 0.4  # the wall and the block come within the horizon

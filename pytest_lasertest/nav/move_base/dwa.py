@@ -34,12 +34,12 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FloatArray
-from pytest_lasertest.nav.move_base.clearance import Edges, Poses, least_gaps
+from pytest_lasertest.nav.move_base.clearance import Edges, Poses, least_gaps, within
 from pytest_lasertest.nav.move_base.costmap import InflationCost
 
 # What SimpleTrajectoryGenerator allows a velocity below its limits.
 EPSILON = 1e-4
-SQUARE_CELLS = 4
+SQUARE_CELLS = 3
 
 
 @dataclass(frozen=True)
@@ -124,7 +124,7 @@ class LocalPlanner:
         # cells (`window` along each side).
         self.obstacle_distance = resolution * window**2
         self.edges = Edges.of(footprint)
-        # m: lethal cells are grouped in squares of four cells a side to skip those that cannot
+        # m: lethal cells are grouped in squares of three cells a side to skip those that cannot
         # be nearest the footprint (clearance.py).
         self.square = SQUARE_CELLS * resolution
         self.oscillation = Oscillation(
@@ -261,12 +261,7 @@ class LocalPlanner:
     def _too_near(self, points: FloatArray, lethal: FloatArray) -> np.ndarray:
         """Which points (P, 2) lie in an inscribed cell: within the inscribed radius of a
         lethal cell, shape (P,)."""
-        # Only cells within the inscribed radius of the points' bounding box can be that near
-        # (the margin covers rounding).
-        lethal = _within(lethal, points[:, 0], points[:, 1], self.cost.inscribed + 1e-9)
-        if not len(lethal):
-            return np.zeros(len(points), dtype=bool)
-        return _nearest(points, lethal) <= self.cost.inscribed
+        return within(points, lethal, self.cost.inscribed)
 
 
 @dataclass

@@ -1,5 +1,6 @@
-"""The footprint's clearance from lethal cells: grouping the cells in squares skips only cells
-that cannot be nearest, so the least over each rollout is the direct computation's to the bit."""
+"""The footprint's clearance from lethal cells: the compiled kernels skip only cells that cannot
+be nearest, so the least over each rollout is the direct computation's to the bit, and which
+points lie within reach of a cell is what numpy says."""
 
 from __future__ import annotations
 
@@ -7,14 +8,7 @@ import numpy as np
 import pytest
 
 from pytest_lasertest.model.geometry import FloatArray
-from pytest_lasertest.nav.move_base.clearance import (
-    DIRECT_CELLS,
-    Edges,
-    Poses,
-    _frames,
-    _signed,
-    least_gaps,
-)
+from pytest_lasertest.nav.move_base.clearance import Edges, Poses, least_gaps, within
 
 RESOLUTION = 0.05  # m
 SIDE = 4 * RESOLUTION  # m, the squares DWA groups cells in
@@ -22,10 +16,18 @@ HUSKY = np.array([[-0.5, -0.33], [0.5, -0.33], [0.5, 0.33], [-0.5, 0.33]])  # m
 
 
 def direct(edges: Edges, poses: Poses, lethal: FloatArray) -> FloatArray:
-    """Every pose against every cell, then the least of each group."""
-    everywhere = _frames(edges, poses, np.arange(len(poses.x)))
-    least: FloatArray = _signed(edges, everywhere, lethal[np.newaxis]).min(axis=1)
-    per_group: FloatArray = least.reshape(poses.groups, -1).min(axis=1)
+    """Every pose against every cell, by the operations clearance.py's docstring writes, then
+    the least of each group."""
+    x, y, yaw = (values[:, np.newaxis] for values in (poses.x, poses.y, poses.yaw))
+    dx, dy = lethal[:, 0] - x, lethal[:, 1] - y  # (P, N) m
+    forward, left = dx * np.cos(yaw) + dy * np.sin(yaw), dy * np.cos(yaw) - dx * np.sin(yaw)
+    offsets = poses.scale[:, np.newaxis] * edges.offsets  # (P, V) m
+    signed = np.full(forward.shape, -np.inf)
+    for edge, (normal_x, normal_y) in enumerate(edges.normals):
+        np.maximum(
+            signed, normal_x * forward + normal_y * left - offsets[:, edge : edge + 1], out=signed
+        )
+    per_group: FloatArray = signed.min(axis=1).reshape(poses.groups, -1).min(axis=1)
     return per_group
 
 
@@ -71,15 +73,15 @@ def test_the_least_gap_of_each_rollout_is_the_direct_computations_to_the_bit(see
     rng = np.random.default_rng(seed)
     edges = Edges.of(footprint(rng))
     poses, lethal = rollouts(rng, int(rng.integers(1, 30)), int(rng.integers(1, 40))), cells(rng)
-    assert len(lethal) > DIRECT_CELLS
     assert np.array_equal(least_gaps(edges, poses, lethal, SIDE), direct(edges, poses, lethal))
 
 
-def test_a_few_cells_are_measured_directly_and_give_the_same_least() -> None:
+def test_a_single_cell_and_no_cell_give_the_direct_least_and_inf() -> None:
     rng = np.random.default_rng(7)
     edges, poses = Edges.of(HUSKY), rollouts(rng, 12, 20)
-    lethal = cells(rng)[:DIRECT_CELLS]
+    lethal = cells(rng)[:1]
     assert np.array_equal(least_gaps(edges, poses, lethal, SIDE), direct(edges, poses, lethal))
+    assert np.array_equal(least_gaps(edges, poses, np.empty((0, 2)), SIDE), np.full(12, np.inf))
 
 
 def test_a_cell_under_the_footprint_gives_a_negative_gap_and_one_beside_it_its_distance() -> None:
@@ -89,3 +91,22 @@ def test_a_cell_under_the_footprint_gives_a_negative_gap_and_one_beside_it_its_d
     assert least_gaps(edges, poses, wall, SIDE) == pytest.approx([0.33])
     under = np.vstack([wall, [[0.1, 0.1]]])
     assert least_gaps(edges, poses, under, SIDE)[0] == pytest.approx(-0.23)
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_which_points_lie_within_reach_of_a_cell_is_what_numpys_hypot_says(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    lethal, reach = cells(rng), float(rng.uniform(0.05, 0.5))
+    points = rng.uniform(-1.6, 1.6, (60, 2))
+    # On the edge of reach: straight across and on the diagonal.
+    points[:10] = lethal[:10] + np.array([reach, 0.0])
+    points[10:20] = lethal[10:20] + reach / np.sqrt(2.0)
+    gaps = np.hypot(points[:, 0:1] - lethal[:, 0], points[:, 1:2] - lethal[:, 1])
+    expected = (gaps <= reach).any(axis=1)
+    assert 0 < expected.sum() < len(points)
+    assert np.array_equal(within(points, lethal, reach), expected)
+
+
+def test_no_cell_is_within_reach_of_anything() -> None:
+    points = np.zeros((3, 2))
+    assert not within(points, np.empty((0, 2)), 1.0).any()

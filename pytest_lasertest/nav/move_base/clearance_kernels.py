@@ -1,0 +1,237 @@
+"""Compiled kernels of clearance.py: the least signed distance from a footprint, over each group
+of poses, to lethal cell centres, measuring only the cells that can be nearest.
+
+The cells are grouped in squares. The signed distance is a maximum of functions of slope 1, so
+it changes by no more than a point moves: a square's cells lie within its radius of its
+centre, and lie no nearer than the centre's signed distance less that radius. At each pose
+every square's bound is taken (the edge lines turned into the odom frame once per pose, five
+operations an edge), the square with the least bound is measured first, and then only the
+squares whose bound is below the least so far; a group's least carries from pose to pose. A
+cell that is measured is measured by the operations of clearance.py's docstring, in their
+order, with no fused multiply-add (numba compiles without fastmath), so the least is the direct
+computation's to the bit; tests/nav/move_base/test_clearance.py holds them equal.
+
+numba compiles these when this module is imported (each for the one signature it is called
+with), outside any controller call's time, and keeps the machine code in __pycache__: the first
+import on a machine takes about 10 s, later ones a fraction of a second.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, TypeVar, cast
+
+import numba
+import numpy as np
+
+from pytest_lasertest.model.geometry import FloatArray
+
+Function = TypeVar("Function", bound=Callable[..., Any])
+
+
+def _compiled(signature: str | None = None) -> Callable[[Function], Function]:
+    """Compile a function in nopython mode, its machine code cached on disk: now, for
+    `signature`, or else for the types of whatever compiled function calls it."""
+
+    def compile_for(function: Function) -> Function:
+        if signature is None:
+            return cast(Function, numba.njit(function, cache=True, nogil=True))
+        return cast(Function, numba.njit(signature, cache=True, nogil=True)(function))
+
+    return compile_for
+
+
+# numba's types: f8 is a float64, i8 an int64, [::1] a C-contiguous axis.
+CELLS = "f8[:, ::1]"  # (N, 2) m
+
+
+@_compiled()
+def _squares(lethal: FloatArray, side: float, rounding: float) -> tuple[Any, ...]:
+    """The cells (N, 2) grouped by the `side` m square of the plane each lies in: the cells' x
+    and y (N,) m in square order, where each square starts among them (B + 1,), its centre's x
+    and y (B,) m and its radius (B,) m to its furthest cell, `rounding` m added."""
+    column = np.floor(lethal[:, 0] / side)
+    row = np.floor(lethal[:, 1] / side)
+    key = (column - column.min()) * (row.max() - row.min() + 1.0) + (row - row.min())
+    order = np.argsort(key, kind="mergesort")
+    cell_x, cell_y, ordered = lethal[order, 0].copy(), lethal[order, 1].copy(), key[order]
+    starts = [0]
+    for index in range(1, len(ordered)):
+        if ordered[index] != ordered[index - 1]:
+            starts.append(index)
+    starts.append(len(ordered))
+    squares = len(starts) - 1
+    centre_x, centre_y, radius = np.empty(squares), np.empty(squares), np.empty(squares)
+    for square in range(squares):
+        xs, ys = (
+            cell_x[starts[square] : starts[square + 1]],
+            cell_y[starts[square] : starts[square + 1]],
+        )
+        centre_x[square] = (xs.min() + xs.max()) / 2.0
+        centre_y[square] = (ys.min() + ys.max()) / 2.0
+        radius[square] = np.hypot(xs - centre_x[square], ys - centre_y[square]).max() + rounding
+    return cell_x, cell_y, np.array(starts), centre_x, centre_y, radius
+
+
+@_compiled()
+def _bounds(
+    turned: FloatArray,
+    centre_x: FloatArray,
+    centre_y: FloatArray,
+    radius: FloatArray,
+    lower: FloatArray,
+) -> int:
+    """Fill `lower` (B,) m with how near each square's cells can be to the footprint, its edge
+    lines `turned` (3, V) into the odom frame (normal x, normal y, offset): the centre's signed
+    distance less the radius (which covers this way's rounding). The square whose bound is
+    least."""
+    lower[:] = -np.inf
+    for edge in range(turned.shape[1]):
+        normal_x, normal_y, offset = turned[0, edge], turned[1, edge], turned[2, edge]
+        for square in range(len(lower)):
+            line = normal_x * centre_x[square] + normal_y * centre_y[square] - offset
+            if line > lower[square]:
+                lower[square] = line
+    lower -= radius
+    return int(np.argmin(lower))
+
+
+@_compiled()
+def _measure(
+    normals: FloatArray,
+    frame: FloatArray,
+    grown: FloatArray,
+    squares: tuple[Any, ...],
+    square: int,
+    best: float,
+) -> float:
+    """The least of `best` and the signed distances of the square's cells from the footprint
+    in `frame` (x, y, cos, sin), its edges' offsets `grown` (V,) m: each cell in the frame, then
+    the largest of the edge lines, as clearance.py's docstring writes them."""
+    cell_x, cell_y, starts = squares[0], squares[1], squares[2]
+    x, y, cos, sin = frame[0], frame[1], frame[2], frame[3]
+    for index in range(starts[square], starts[square + 1]):
+        dx, dy = cell_x[index] - x, cell_y[index] - y
+        forward = dx * cos + dy * sin
+        left = dy * cos - dx * sin
+        signed = -np.inf
+        for edge in range(len(grown)):
+            line = normals[edge, 0] * forward + normals[edge, 1] * left - grown[edge]
+            if line > signed:
+                signed = line
+        if signed < best:
+            best = signed
+    return best
+
+
+@_compiled()
+def _least_of_group(
+    normals: FloatArray,
+    offsets: FloatArray,
+    poses: FloatArray,
+    first: int,
+    count: int,
+    squares: tuple[Any, ...],
+) -> float:
+    """The least over poses first .. first + count - 1: at each, the square that may be
+    nearest first, so that its least rules out the others, then those still in doubt."""
+    centre_x, centre_y, radius = squares[3], squares[4], squares[5]
+    lower, frame = np.empty(len(radius)), np.empty(4)
+    grown, turned = np.empty(len(offsets)), np.empty((3, len(offsets)))
+    best = np.inf
+    for pose in range(first, first + count):
+        if pose > first and _repeats(poses, pose):
+            continue  # a short rollout's tail stays at its last pose: it changes no least
+        _frame(normals, offsets, poses, pose, frame, grown, turned)
+        nearest = _bounds(turned, centre_x, centre_y, radius, lower)
+        if lower[nearest] >= best:
+            continue
+        best = _measure(normals, frame, grown, squares, nearest, best)
+        for square in range(len(lower)):
+            if lower[square] < best and square != nearest:
+                best = _measure(normals, frame, grown, squares, square, best)
+    return best
+
+
+@_compiled()
+def _frame(
+    normals: FloatArray,
+    offsets: FloatArray,
+    poses: FloatArray,
+    pose: int,
+    frame: FloatArray,
+    grown: FloatArray,
+    turned: FloatArray,
+) -> None:
+    """Fill in the pose's frame (x, y, cos, sin), its edges' offsets `grown` (V,) m by its
+    scale, and its edge lines `turned` (3, V) into the odom frame."""
+    x, y, cos, sin, scale = (
+        poses[0, pose],
+        poses[1, pose],
+        poses[3, pose],
+        poses[4, pose],
+        poses[5, pose],
+    )
+    frame[0], frame[1], frame[2], frame[3] = x, y, cos, sin
+    for edge in range(len(offsets)):
+        grown[edge] = scale * offsets[edge]
+        turned[0, edge] = normals[edge, 0] * cos - normals[edge, 1] * sin
+        turned[1, edge] = normals[edge, 0] * sin + normals[edge, 1] * cos
+        turned[2, edge] = turned[0, edge] * x + turned[1, edge] * y + grown[edge]
+
+
+@_compiled()
+def _repeats(poses: FloatArray, pose: int) -> bool:
+    """Whether `pose` is the pose before it, grown alike."""
+    before = pose - 1
+    return bool(
+        poses[0, pose] == poses[0, before]
+        and poses[1, pose] == poses[1, before]
+        and poses[2, pose] == poses[2, before]
+        and poses[5, pose] == poses[5, before]
+    )
+
+
+@_compiled(f"f8[::1]({CELLS}, f8[::1], f8[:, ::1], i8, {CELLS}, f8, f8)")
+def least_per_group(
+    normals: FloatArray,
+    offsets: FloatArray,
+    poses: FloatArray,
+    groups: int,
+    lethal: FloatArray,
+    side: float,
+    rounding: float,
+) -> FloatArray:
+    """The least signed distance (m) from the footprint, edges `normals` (V, 2) and `offsets`
+    (V,) m, at any pose of each group to a lethal cell centre (N, 2) m, shape (G,); inf where
+    there is no cell. `poses` (6, P) holds x, y, yaw, cos(yaw), sin(yaw) and scale, in G groups
+    of P / G consecutive poses; cells are grouped in squares of `side` m; `rounding` m covers
+    the rounding of the bounds."""
+    least = np.full(groups, np.inf)
+    if len(lethal) == 0:
+        return least
+    squares = _squares(lethal, side, rounding)
+    per_group = poses.shape[1] // groups
+    for group in range(groups):
+        least[group] = _least_of_group(
+            normals, offsets, poses, group * per_group, per_group, squares
+        )
+    return least
+
+
+@_compiled(f"b1[::1]({CELLS}, {CELLS}, f8)")
+def any_within(points: FloatArray, lethal: FloatArray, reach: float) -> Any:
+    """Whether a lethal cell centre (N, 2) m lies within `reach` m of each point (P, 2) m, shape
+    (P,): the distance as numpy's hypot takes it (both call the C library's), and a cell
+    further than `reach` along either axis never measured (hypot is no less than either)."""
+    near = np.zeros(len(points), np.bool_)
+    for point in range(len(points)):
+        for cell in range(len(lethal)):
+            dx = points[point, 0] - lethal[cell, 0]
+            if abs(dx) > reach:
+                continue
+            dy = points[point, 1] - lethal[cell, 1]
+            if abs(dy) <= reach and np.hypot(dx, dy) <= reach:
+                near[point] = True
+                break
+    return near
