@@ -73,7 +73,7 @@ def least_gaps(edges: Edges, poses: Poses, lethal: FloatArray, side: float) -> F
     return least
 
 
-def within(points: FloatArray, lethal: FloatArray, reach: float) -> npt.NDArray[np.bool_]:
+def cell_within(points: FloatArray, lethal: FloatArray, reach: float) -> npt.NDArray[np.bool_]:
     """Whether a lethal cell centre (N, 2) m lies within `reach` m of each point (P, 2) m,
     shape (P,)."""
     near: npt.NDArray[np.bool_] = any_within(_cells(points), _cells(lethal), reach)

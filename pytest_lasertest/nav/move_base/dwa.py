@@ -34,7 +34,7 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FloatArray
-from pytest_lasertest.nav.move_base.clearance import Edges, Poses, least_gaps, within
+from pytest_lasertest.nav.move_base.clearance import Edges, Poses, cell_within, least_gaps
 from pytest_lasertest.nav.move_base.costmap import InflationCost
 
 # What SimpleTrajectoryGenerator allows a velocity below its limits.
@@ -261,7 +261,7 @@ class LocalPlanner:
     def _too_near(self, points: FloatArray, lethal: FloatArray) -> np.ndarray:
         """Which points (P, 2) lie in an inscribed cell: within the inscribed radius of a
         lethal cell, shape (P,)."""
-        return within(points, lethal, self.cost.inscribed)
+        return cell_within(points, lethal, self.cost.inscribed)
 
 
 @dataclass

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from pytest_lasertest.model.geometry import FloatArray
-from pytest_lasertest.nav.move_base.clearance import Edges, Poses, least_gaps, within
+from pytest_lasertest.nav.move_base.clearance import Edges, Poses, cell_within, least_gaps
 
 RESOLUTION = 0.05  # m
 SIDE = 4 * RESOLUTION  # m, the squares DWA groups cells in
@@ -104,9 +104,9 @@ def test_which_points_lie_within_reach_of_a_cell_is_what_numpys_hypot_says(seed:
     gaps = np.hypot(points[:, 0:1] - lethal[:, 0], points[:, 1:2] - lethal[:, 1])
     expected = (gaps <= reach).any(axis=1)
     assert 0 < expected.sum() < len(points)
-    assert np.array_equal(within(points, lethal, reach), expected)
+    assert np.array_equal(cell_within(points, lethal, reach), expected)
 
 
 def test_no_cell_is_within_reach_of_anything() -> None:
     points = np.zeros((3, 2))
-    assert not within(points, np.empty((0, 2)), 1.0).any()
+    assert not cell_within(points, np.empty((0, 2)), 1.0).any()
