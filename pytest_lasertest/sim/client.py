@@ -24,6 +24,7 @@ from pytest_lasertest.sim.bodies import (
     built_body,
     wheel_joints,
 )
+from pytest_lasertest.sim.nearby import Nearby
 
 # PyBullet's table of physics clients: ids run from 0 to this, and are reused once disconnected.
 MAX_CLIENTS = 1024
@@ -36,10 +37,6 @@ HUSKY_URDF = "husky/husky.urdf"
 LEFT_WHEELS, RIGHT_WHEELS = (1, 3), (0, 2)
 GRAVITY = 9.81  # m/s^2
 WHEEL_TORQUE = 1000.0  # N m, more than the wheels ever need: the velocity target rules
-# m: covers the rounding of an obstacle's footprint distance, so one kept in doubt is asked about.
-ROUNDING = 1e-9
-# m: how far the robot moves before the obstacles near it are found again.
-REFRESH = 0.25
 
 
 def load_pybullet() -> ModuleType:
@@ -117,10 +114,7 @@ class PhysicsWorld:
             self._wheels, self._sides = lefts + rights, (len(lefts), len(rights))
             self._torques = (WHEEL_TORQUE,) * len(self._wheels)
             self.obstacles = tuple(self._add_obstacle(obstacle) for obstacle in obstacles)
-            self._footprints = [_footprint(obstacle) for obstacle in obstacles]
-            # Where the obstacles near the robot were last found: x, y, within, their bodies.
-            self._found: tuple[float, float, float, tuple[int, ...]] | None = None
-            self._reach = self._robot_reach(start)
+            self._nearby = Nearby(self.obstacles, obstacles, self._robot_reach(start))
             inertial = self._pybullet.getDynamicsInfo(self.robot, -1, physicsClientId=self._client)
             self._from_com = self._pybullet.invertTransform(*inertial[3:5])
         except BaseException:
@@ -192,10 +186,9 @@ class PhysicsWorld:
         """The least distance between the robot at `pose` and any obstacle (m, at most
         `within`), and whether they touch after the last step.
 
-        PyBullet is asked only about the obstacles `_near` keeps: the others are further away
-        than `within`.
+        PyBullet is asked only about the obstacles that can be that near (`nearby.py`).
         """
-        near = self._near(float(pose[0]), float(pose[1]), within)
+        near = self._nearby.bodies(float(pose[0]), float(pose[1]), within)
         if not near:
             return within, False
         pybullet, client = self._pybullet, self._client
@@ -212,23 +205,6 @@ class PhysicsWorld:
             for point in pybullet.getContactPoints(self.robot, body, physicsClientId=client)
         )
         return min(distances, default=within), touching
-
-    def _near(self, x: float, y: float, within: float) -> tuple[int, ...]:
-        """The obstacles whose footprint may come within `within` of the robot's reach around
-        (x, y) m: those within `within` + REFRESH of it where they were last found, found again
-        once the robot is REFRESH from there. Until then every other one is still further than
-        `within`, and none is looked at (at every physics step). A footprint, not a bounding
-        circle: a 12 m wall's circle holds most of a building."""
-        found = self._found
-        if found is None or found[2] != within or math.hypot(x - found[0], y - found[1]) >= REFRESH:
-            reach = self._reach + REFRESH + ROUNDING
-            near = tuple(
-                body
-                for body, footprint in zip(self.obstacles, self._footprints, strict=True)
-                if _gap(footprint, x, y) - reach < within
-            )
-            self._found = found = (x, y, within, near)
-        return found[3]
 
     def cast(self, starts: FloatArray, ends: FloatArray) -> FloatArray:
         """Where each ray from `starts` to `ends` (both (R, 3), m) first meets the world, as a
@@ -381,21 +357,3 @@ def _c_output_silenced() -> Iterator[None]:
         for descriptor, copy in zip((1, 2), saved, strict=True):
             os.dup2(copy, descriptor)
             os.close(copy)
-
-
-def _footprint(obstacle: Obstacle) -> tuple[float, ...]:
-    """The obstacle's footprint as a rounded rectangle: centre x, y (m), its axis's cosine and
-    sine, half length and half width (m), and the rounding's radius (m)."""
-    if isinstance(obstacle, Box):
-        cos, sin = math.cos(obstacle.yaw), math.sin(obstacle.yaw)
-        return obstacle.x, obstacle.y, cos, sin, obstacle.length / 2.0, obstacle.width / 2.0, 0.0
-    return obstacle.x, obstacle.y, 1.0, 0.0, 0.0, 0.0, obstacle.radius
-
-
-def _gap(footprint: tuple[float, ...], x: float, y: float) -> float:
-    """The distance (m) from (x, y) to a `_footprint`, at most 0 inside."""
-    centre_x, centre_y, cos, sin, half_length, half_width, radius = footprint
-    dx, dy = x - centre_x, y - centre_y
-    along = max(abs(cos * dx + sin * dy) - half_length, 0.0)
-    across = max(abs(cos * dy - sin * dx) - half_width, 0.0)
-    return math.hypot(along, across) - radius
