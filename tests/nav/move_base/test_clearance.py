@@ -9,9 +9,10 @@ import pytest
 
 from pytest_lasertest.model.geometry import FloatArray
 from pytest_lasertest.nav.move_base.clearance import Edges, Poses, cell_within, least_gaps
+from pytest_lasertest.nav.move_base.dwa import SQUARE_CELLS
 
 RESOLUTION = 0.05  # m
-SIDE = 4 * RESOLUTION  # m, the squares DWA groups cells in
+SIDE = SQUARE_CELLS * RESOLUTION  # m, the squares DWA groups cells in
 HUSKY = np.array([[-0.5, -0.33], [0.5, -0.33], [0.5, 0.33], [-0.5, 0.33]])  # m
 
 
