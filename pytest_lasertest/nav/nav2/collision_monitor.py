@@ -53,6 +53,14 @@ def approach(
     points = _reachable(command, points, footprint, settings)
     if len(points) < settings.min_points:
         return command  # no step's footprint can hold min_points
+    return _process_approach(command, points, footprint, settings)
+
+
+def _process_approach(
+    command: Command, points: FloatArray, footprint: FloatArray, settings: CollisionMonitorSettings
+) -> Command:
+    """processApproach: stop if min_points lie in the footprint now, else slow the command by
+    the time of the first step whose footprint holds them."""
     if _inside(points, footprint) >= settings.min_points:
         return 0.0, 0.0
     collision = _collision_time(command, points, footprint, settings)

@@ -10,8 +10,7 @@ from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.sensor import LaserScanMeta
 from pytest_lasertest.nav.nav2.collision_monitor import (
     CollisionMonitorSettings,
-    _collision_time,
-    _inside,
+    _process_approach,
     approach,
     scan_points,
 )
@@ -60,19 +59,6 @@ def test_a_scan_source_is_read_at_any_height_as_nav2s_scan_source_has_no_heights
     assert len(scan_points(low)) == 3  # 0.1 m up: a point cloud source's min_height, 0.05 m
 
 
-def every_point(
-    command: tuple[float, float], points: np.ndarray, settings: CollisionMonitorSettings
-) -> tuple[float, float]:
-    """processApproach as Nav2 runs it: every point tested at every step."""
-    if _inside(points, FOOTPRINT) >= settings.min_points:
-        return 0.0, 0.0
-    collision = _collision_time(command, points, FOOTPRINT, settings)
-    if collision is None:
-        return command
-    ratio = collision / settings.time_before_collision
-    return command[0] * ratio, command[1] * ratio
-
-
 @pytest.mark.parametrize("seed", range(30))
 def test_testing_only_the_points_the_footprint_can_reach_changes_no_command(seed: int) -> None:
     rng = np.random.default_rng(seed)
@@ -82,4 +68,6 @@ def test_testing_only_the_points_the_footprint_can_reach_changes_no_command(seed
     settings = CollisionMonitorSettings(
         float(rng.uniform(0.3, 2.0)), float(rng.choice([0.02, 0.05, 0.1])), int(rng.integers(1, 12))
     )
-    assert approach(command, points, FOOTPRINT, settings) == every_point(command, points, settings)
+    # processApproach as Nav2 runs it: every point tested at every step.
+    every_point = _process_approach(command, points, FOOTPRINT, settings)
+    assert approach(command, points, FOOTPRINT, settings) == every_point
