@@ -36,6 +36,13 @@ from tests.helpers.git import commit_everything  # noqa: E402
 from tests.helpers.texts import PAIRS, ROBOT, VALID_PAIRS  # noqa: E402
 
 
+@pytest.fixture(autouse=True)
+def off_ci(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The suite runs as on a developer's machine wherever it runs: CI (which `.ci/run` sets)
+    fixes each pairs file's seed and picks the ci profile, and the tests of that set it."""
+    monkeypatch.delenv("CI", raising=False)
+
+
 @pytest.fixture
 def pairs_file(pytester: pytest.Pytester) -> Path:
     """A valid pairs file, `gate.lasertest.yaml`, in the pytester directory."""

@@ -22,6 +22,7 @@ import yaml
 from pytest_lasertest.artifacts.files import write_text
 from pytest_lasertest.inputs.errors import Location, SpecError, display_path
 from pytest_lasertest.inputs.yamlfile import read_text
+from pytest_lasertest.model.obstacles import Obstacle, placed
 from pytest_lasertest.pairsfile.body import body_fields
 from pytest_lasertest.pairsfile.bundled import bundled_robots
 from pytest_lasertest.pairsfile.described import DESCRIPTION_KEYS
@@ -124,7 +125,7 @@ def _pair_mapping(
             "the pair is gone from the file since it was read, or lost a scanner",
             "restore it, or run again",
         )
-    placement: dict[str, object] = {"obstacle": obstacle_fields(pinned.obstacle)}
+    placement: dict[str, object] = {"obstacle": _pinned_fields(pinned.obstacle)}
     placement["seed"] = int(pinned.seed)
     if pinned.direction is not None:
         placement["direction"] = pinned.direction
@@ -133,6 +134,12 @@ def _pair_mapping(
         "candidate": _scanner(sides["candidate"], pair.candidate),
         "placements": [placement],
     }
+
+
+def _pinned_fields(obstacle: Obstacle) -> dict[str, object]:
+    """`obstacle_fields` of the obstacle as drives place it (`obstacles.placed`): the very
+    numbers the failure drove, to a micrometre."""
+    return obstacle_fields(placed(obstacle))
 
 
 def _scanner(written: object, scanner: Scanner) -> object:

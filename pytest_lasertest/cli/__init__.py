@@ -1,7 +1,7 @@
-"""The `lasertest` command: `plan` finds placements, `explain` shows which beams read one of them,
-`profile` shows the laser the gate reads from a robot description (or infers from a bag),
-`catalogue` lists scanner models, `schema` prints the pairs file's JSON Schema, `doctor` checks
-the installation."""
+"""The `lasertest` command: `plan` finds placements, `explain` shows which beams read one of them
+(or one both scanners read, an `avoid-K` item's), `profile` shows the laser the gate reads from a
+robot description (or infers from a bag), `catalogue` lists scanner models, `schema` prints the
+pairs file's JSON Schema, `doctor` checks the installation."""
 
 from __future__ import annotations
 
@@ -29,6 +29,9 @@ from pytest_lasertest.cli.errors import (
 )
 from pytest_lasertest.descriptions.gitref import GitError
 from pytest_lasertest.inputs.errors import SpecError
+from pytest_lasertest.pairsfile.placements import MAX_SEED  # the seeds --laser-seed takes
+
+PAIRS = "robots/husky/gate.lasertest.yaml"  # the pairs file the fixes' examples name
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -36,7 +39,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     on stderr (and with --json as a JSON object on stdout too, `errors.py`)."""
     arguments = list(sys.argv[1:] if argv is None else argv)
     try:
-        status = _run(_parser().parse_args(arguments))
+        status = _run(_parsed(arguments))
         sys.stdout.flush()  # here, where a reader that went away can still be caught
     except BrokenPipeError:
         # The reader stopped early (`| head`): stop quietly, as other Unix tools do, and keep
@@ -49,27 +52,77 @@ def main(argv: Sequence[str] | None = None) -> int:
     return status
 
 
+def _parsed(arguments: list[str]) -> argparse.Namespace:
+    """The command line, parsed; words no parser takes are the subcommand's error, whose fix
+    shows that subcommand's usage rather than the top level's."""
+    parser = _parser()
+    args, unknown = parser.parse_known_args(arguments)
+    if unknown:
+        parser.commands()[args.command].error(f"unrecognized arguments: {' '.join(unknown)}")
+    return args
+
+
 def _parser() -> Parser:
-    """`lasertest` and its subcommands."""
-    parser = Parser(prog="lasertest", description=__doc__)
+    """`lasertest` and its subcommands, each with an example its errors' fix shows."""
+    parser = Parser(prog="lasertest", description=__doc__, example=f"lasertest plan {PAIRS}")
     commands = parser.add_subparsers(dest="command", required=True)
-    plan = commands.add_parser("plan", help="find the placements that tell each pair apart")
+    plan = commands.add_parser(
+        "plan",
+        help="find the placements that tell each pair apart",
+        example=f"lasertest plan {PAIRS}",
+    )
     plan.add_argument("pairs_file", type=Path, metavar="PAIRS.yaml")
     plan.add_argument("--json", action="store_true", help="print the JSON contract")
-    explain = commands.add_parser("explain", help="show which beams read one witness's obstacle")
-    explain.add_argument("pairs_file", type=Path, metavar="PAIRS.yaml")
-    explain.add_argument("pair", metavar="PAIR", help="a pair's name in the pairs file")
-    explain.add_argument("witness", metavar="WITNESS", help="an id `lasertest plan` prints")
-    explain.add_argument("--json", action="store_true", help="print JSON instead of text")
+    add_explain_parser(commands)
     add_profile_parser(commands)
-    catalogue = commands.add_parser("catalogue", help="list the scanner models `model:` can name")
+    add_installation_parsers(commands)
+    return parser
+
+
+def add_installation_parsers(commands: Any) -> None:
+    """`lasertest catalogue [--json]`, `lasertest schema [--path]`, `lasertest doctor`: what the
+    installed package holds, and whether it works."""
+    catalogue = commands.add_parser(
+        "catalogue",
+        help="list the scanner models `model:` can name",
+        example="lasertest catalogue --json",
+    )
     catalogue.add_argument("--json", action="store_true", help="print JSON instead of a table")
-    schema = commands.add_parser("schema", help="print the pairs file's JSON Schema")
+    schema = commands.add_parser(
+        "schema", help="print the pairs file's JSON Schema", example="lasertest schema --path"
+    )
     schema.add_argument(
         "--path", action="store_true", help="print where the installed schema file is instead"
     )
-    commands.add_parser("doctor", help="check the installation and say what to fix")
-    return parser
+    commands.add_parser(
+        "doctor", help="check the installation and say what to fix", example="lasertest doctor"
+    )
+
+
+def add_explain_parser(commands: Any) -> None:
+    """`lasertest explain PAIRS.yaml PAIR WITNESS [--seed SEED] [--json]`."""
+    explain = commands.add_parser(
+        "explain",
+        help="show which beams read one witness's obstacle",
+        example=f"lasertest explain {PAIRS} size candidate-misses-0",
+    )
+    explain.add_argument("pairs_file", type=Path, metavar="PAIRS.yaml")
+    explain.add_argument("pair", metavar="PAIR", help="a pair's name in the pairs file")
+    explain.add_argument(
+        "witness",
+        metavar="WITNESS",
+        help="an id `lasertest plan` prints, or avoid-K for the pair's K-th placement both "
+        "scanners read (its item PAIR[avoid-K])",
+    )
+    explain.add_argument(
+        "--seed",
+        type=parse_seed,
+        default=0,
+        metavar="SEED",
+        help="for avoid-K: the run's --laser-seed, whose scan noise the baseline drives past "
+        "each placement with (default 0)",
+    )
+    explain.add_argument("--json", action="store_true", help="print JSON instead of text")
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -77,7 +130,9 @@ def _run(args: argparse.Namespace) -> int:
     if args.command == "plan":
         return print_plan(args.pairs_file, as_json=args.json)
     if args.command == "explain":
-        return print_explain(args.pairs_file, args.pair, args.witness, as_json=args.json)
+        return print_explain(
+            args.pairs_file, args.pair, args.witness, seed=args.seed, as_json=args.json
+        )
     if args.command == "profile":
         return print_profile(args)
     if args.command == "catalogue":
@@ -94,6 +149,7 @@ def add_profile_parser(commands: Any) -> None:
         "profile",
         help="print the laser profile the gate reads from a URDF, xacro or SDF file, or the "
         "profile a recording of the scanner (a bag) shows",
+        example="lasertest profile robots/mybot/robot.urdf.xacro",
     )
     profile.add_argument("file", type=Path, metavar="FILE", nargs="?")
     profile.add_argument(
@@ -127,6 +183,20 @@ def add_profile_parser(commands: Any) -> None:
         help="where $(find NAME) points (repeatable)",
     )
     profile.add_argument("--json", action="store_true", help="print JSON instead of text")
+
+
+def parse_seed(text: str) -> int:
+    """A seed as `--laser-seed` takes one: a whole number from 0 to MAX_SEED."""
+    try:
+        seed = int(text, 10)
+    except ValueError:
+        seed = -1
+    if not 0 <= seed <= MAX_SEED:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a seed: give a whole number from 0 to {MAX_SEED}, as the run's "
+            "report header prints it (lasertest: --laser-seed=N ...)"
+        )
+    return seed
 
 
 def parse_xacro_arg(text: str) -> tuple[str, str]:

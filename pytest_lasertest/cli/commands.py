@@ -5,14 +5,17 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
+from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from pytest_lasertest.cli.errors import CommandError, check_file
 from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.model.geometry import Pose3D
-from pytest_lasertest.model.plan import PairPlan
+from pytest_lasertest.model.plan import AVOID, PairPlan, Witness
+from pytest_lasertest.model.verify import Scene
 from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
 from pytest_lasertest.pairsfile.catalogue import load_catalogue
 from pytest_lasertest.pairsfile.controller import default_controller
@@ -21,7 +24,9 @@ from pytest_lasertest.reports.catalogue import ModelFigures, catalogue_table
 from pytest_lasertest.reports.formats import json_text
 
 if TYPE_CHECKING:
-    from pytest_lasertest.sim.scenario import ControllerError
+    from pytest_lasertest.search.trials import Setting
+    from pytest_lasertest.sim.client import PhysicsClient
+    from pytest_lasertest.sim.scenario import ControllerError, Run
 
 DESCRIPTION = "a URDF, xacro or SDF file"
 BOTH = (
@@ -43,32 +48,130 @@ def print_plan(path: Path, *, as_json: bool) -> int:
     return 0
 
 
-def print_explain(path: Path, pair_name: str, witness_id: str, *, as_json: bool) -> int:
-    """Plan one pair and print which beams of each scanner read one witness's obstacle."""
+def print_explain(
+    path: Path, pair_name: str, witness_id: str, *, seed: int = 0, as_json: bool
+) -> int:
+    """Plan one pair and print which beams of each scanner read one witness's obstacle: one
+    `lasertest plan` prints, or `avoid-K`, the placement both scanners read of the pair's item
+    `PAIR[avoid-K]`, as a run with `--laser-seed=seed` finds it."""
     from pytest_lasertest.reports.explain import explain_json, explain_scans, explain_text
 
     spec = load_pairs_file(_pairs_file(path, "explain"))
-    pair = next((pair for pair in spec.pairs if pair.name == pair_name), None)
+    pair = _named_pair(spec, pair_name)
+    if witness_id.startswith(f"{AVOID}-"):
+        scene, witness = _avoid_witness(spec, pair, witness_id, seed)
+    else:
+        plan = _driven_plan(spec, pair)
+        scene, witness = plan.scene, _planned_witness(spec, plan, witness_id)
+    scans = explain_scans(scene, witness)
+    if as_json:
+        print(json_text(explain_json(pair_name, witness, scans)))
+    else:
+        print(explain_text(pair_name, witness, scans, scene=scene))
+    return 0
+
+
+def _named_pair(spec: PairsFile, name: str) -> Pair:
+    """The pair of that name, or an error naming the pairs there are."""
+    pair = next((pair for pair in spec.pairs if pair.name == name), None)
     if pair is None:
         names = ", ".join(pair.name for pair in spec.pairs)
         raise CommandError(
-            f"no pair {pair_name!r} in {path}", f"give one of its pairs: {names}", path
+            f"no pair {name!r} in {spec.path}", f"give one of its pairs: {names}", spec.path
         )
-    plan = _driven_plan(spec, pair)
+    return pair
+
+
+def _planned_witness(spec: PairsFile, plan: PairPlan, witness_id: str) -> Witness:
+    """The plan's witness of that id, or an error naming the ids there are."""
     witness = plan.find(witness_id)
     if witness is None:
         ids = ", ".join(witness.id for witness in plan.witnesses()) or "none"
         raise CommandError(
-            f"pair {pair_name!r} has no witness {witness_id!r}",
-            f"give one of the witnesses `lasertest plan` prints for it: {ids}",
-            path,
+            f"pair {plan.name!r} has no witness {witness_id!r}",
+            f"give one of the witnesses `lasertest plan` prints for it ({ids}), or "
+            f"{_avoid_ids(spec)} for its {_placements(spec)} both scanners read",
+            spec.path,
         )
-    scans = explain_scans(plan.scene, witness)
-    if as_json:
-        print(json_text(explain_json(pair_name, witness, scans)))
-    else:
-        print(explain_text(pair_name, witness, scans))
-    return 0
+    return witness
+
+
+def _avoid_witness(
+    spec: PairsFile, pair: Pair, witness_id: str, seed: int
+) -> tuple[Scene, Witness]:
+    """The pair's `avoid-K` placement, found as its item finds it: on the path the baseline's
+    obstacle-free run times, among the placements the baseline robot passes with `seed`'s scan
+    noise (`LaserSession.avoid`)."""
+    from pytest_lasertest.search.plans import avoid_for, pair_scene
+    from pytest_lasertest.search.witness import passed_by_baseline
+    from pytest_lasertest.sim.scenario import ControllerError
+
+    index = _avoid_index(spec, pair, witness_id)
+    with _setting(spec, pair, seed) as setting:
+        scene = pair_scene(spec, pair, _control_run(spec, pair, setting.client))
+        try:
+            found = passed_by_baseline(setting, avoid_for(spec, scene), spec.settings.witnesses)
+        except ControllerError as error:
+            raise _broken(error, pair, "a drive past its placements both scanners read") from None
+    if index >= len(found):
+        raise _not_passed(spec, pair, witness_id, found, seed)
+    return scene, found[index]
+
+
+def _avoid_index(spec: PairsFile, pair: Pair, witness_id: str) -> int:
+    """K of `avoid-K`, refused unless the pair has that item."""
+    index = witness_id.removeprefix(f"{AVOID}-")
+    if index.isdigit() and int(index) < spec.settings.witnesses:
+        return int(index)
+    raise CommandError(
+        f"pair {pair.name!r} has no witness {witness_id!r}: its {_placements(spec)} both "
+        f"scanners read {'are' if spec.settings.witnesses > 1 else 'is'} {_avoid_ids(spec)}, "
+        "as many as settings.witnesses asks",
+        f"give {_avoid_ids(spec)}, or a witness `lasertest plan` prints for it",
+        spec.path,
+    )
+
+
+def _avoid_ids(spec: PairsFile) -> str:
+    """`avoid-0`, or `avoid-0 to avoid-2`: the ids of a pair's items `PAIR[avoid-K]`."""
+    last = spec.settings.witnesses - 1
+    return f"{AVOID}-0" if last == 0 else f"{AVOID}-0 to {AVOID}-{last}"
+
+
+def _placements(spec: PairsFile) -> str:
+    return "placements" if spec.settings.witnesses > 1 else "placement"
+
+
+def _not_passed(
+    spec: PairsFile, pair: Pair, witness_id: str, found: tuple[Witness, ...], seed: int
+) -> CommandError:
+    """An `avoid-K` the baseline robot does not get to: its item skips, as there is no K-th
+    placement both scanners read that the baseline passes."""
+    passed = ", ".join(witness.id for witness in found)
+    give = f"give one it passes ({passed})" if found else "give a witness `lasertest plan` prints"
+    return CommandError(
+        f"pair {pair.name!r} has no witness {witness_id!r}: with seed {seed} the baseline robot "
+        f"passes {len(found)} of its placements both scanners read, and its item "
+        f"{pair.name}[{witness_id}] is skipped",
+        f"{give}, or give the seed of the run (its --laser-seed) with --seed",
+        spec.path,
+    )
+
+
+@contextlib.contextmanager
+def _setting(spec: PairsFile, pair: Pair, seed: int) -> Iterator[Setting]:
+    """Where the pair's drives go, as an item's would: the pairs file's controller, else the
+    default (conftest hooks need pytest, and are not asked), in a physics client closed after."""
+    from pytest_lasertest.search.drives import RunCache
+    from pytest_lasertest.search.trials import Setting
+    from pytest_lasertest.sim.client import PhysicsClient
+
+    controller = spec.controller or default_controller(spec.path)
+    client = PhysicsClient()
+    try:
+        yield Setting(spec, pair, controller, seed, client, RunCache())
+    finally:
+        client.close()
 
 
 def print_profile(args: argparse.Namespace) -> int:
@@ -151,30 +254,37 @@ def print_schema(*, path: bool) -> int:
 
 def _driven_plan(spec: PairsFile, pair: Pair) -> PairPlan:
     """The pair planned as the gate's items plan it: along the route timed by the baseline's
-    obstacle-free run, with the pairs file's controller or the default (conftest hooks need
-    pytest, and are not asked). That run reads nothing, so its scan noise, and the seed, make no
-    difference to it."""
-    from pytest_lasertest.search.drives import drive
+    obstacle-free run."""
     from pytest_lasertest.search.plans import plan_for
+
+    return plan_for(spec, pair, _control_run(spec, pair))
+
+
+def _control_run(spec: PairsFile, pair: Pair, client: PhysicsClient | None = None) -> Run:
+    """The baseline's obstacle-free run, which times the path the gate plans on, with the pairs
+    file's controller or the default (conftest hooks need pytest, and are not asked). That run
+    reads nothing, so its scan noise, and the seed, make no difference to it."""
+    from pytest_lasertest.search.drives import drive
     from pytest_lasertest.sim.scenario import ControllerError
 
     controller = spec.controller or default_controller(spec.path)
     try:
-        run = drive(spec, pair.baseline.profile, (), 0, controller.factory)
+        return drive(spec, pair.baseline.profile, (), 0, controller.factory, client)
     except ControllerError as error:
         raise _broken(error, pair) from None
-    return plan_for(spec, pair, run)
 
 
-def _broken(error: ControllerError, pair: Pair) -> CommandError:
-    """A controller that broke the drive timing `pair`'s path: what it did, where in its code,
-    and the fix (`sim/guard.py`)."""
+def _broken(
+    error: ControllerError, pair: Pair, drive: str = "the obstacle-free drive that times"
+) -> CommandError:
+    """A controller that broke `drive` of `pair`: what it did, where in its code, and the fix
+    (`sim/guard.py`)."""
     fault = error.fault
     frame = fault.frames[0] if fault.frames else None  # the controller's own call
     file = Path(frame.path) if frame else None
     where = f" (at {display_path(file)}:{frame.line} in {frame.function})" if frame and file else ""
     problem = (
-        f"the controller {error.controller} broke the obstacle-free drive that times pair "
+        f"the controller {error.controller} broke {drive} pair "
         f"{pair.name!r}: {fault.describe()}{where}"
     )
     line = frame.line if frame else None

@@ -18,10 +18,12 @@ text printed on stderr; `file`, `line` and `field` are null where they do not ap
 from __future__ import annotations
 
 import argparse
+import difflib
 import json
+import re
 import sys
 from pathlib import Path
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from pytest_lasertest.descriptions.gitref import GitError
 from pytest_lasertest.inputs.errors import SpecError, display_path
@@ -55,7 +57,7 @@ class CommandError(Exception):
 class ArgumentError(Exception):
     """argparse's complaint about the command line, raised instead of its exit."""
 
-    def __init__(self, parser: argparse.ArgumentParser, message: str) -> None:
+    def __init__(self, parser: Parser, message: str) -> None:
         super().__init__(message)
         self.parser = parser
         self.message = message
@@ -63,10 +65,44 @@ class ArgumentError(Exception):
 
 class Parser(argparse.ArgumentParser):
     """argparse's parser, raising ArgumentError where argparse would print and exit, so that
-    `--json` can print the error as JSON too. Its subcommands' parsers are of this class."""
+    `--json` can print the error as JSON too, with a fix. Its subcommands' parsers are of this
+    class; `example` is a command line it takes, which the fix shows."""
+
+    def __init__(self, *args: Any, example: str = "", **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.example = example
 
     def error(self, message: str) -> NoReturn:
         raise ArgumentError(self, message)
+
+    def commands(self) -> dict[str, Parser]:
+        """The subcommands' parsers, by name; none for a subcommand's own parser."""
+        found: dict[str, Parser] = {}
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                found |= action.choices
+        return found
+
+
+def argument_fix(error: ArgumentError) -> str:
+    """What to run instead of a command line argparse refused: the command meant, for an
+    unknown one, else an example of the parser's command and where its help is."""
+    parser = error.parser
+    names = list(parser.commands())
+    if not names:
+        return f"run e.g. `{parser.example}`; `{parser.prog} --help` says what each argument takes"
+    typed = re.search(r"invalid choice: '([^']*)'", error.message)
+    if typed is None:
+        return (
+            f"run `{parser.prog} --help` for the commands, or e.g. `{parser.example}` to find the "
+            "placements that tell each pair apart"
+        )
+    close = difflib.get_close_matches(typed.group(1), names, n=1)
+    meant = f"did you mean `{parser.prog} {close[0]}`? " if close else ""
+    return (
+        f"{meant}give one of the commands {', '.join(names)}; `{parser.prog} --help` says what "
+        "each does"
+    )
 
 
 def error_json(error: Exception) -> dict[str, object]:
@@ -84,7 +120,7 @@ def error_json(error: Exception) -> dict[str, object]:
         fields |= {"kind": error.kind, "file": file, "line": error.line}
         fields |= {"problem": error.problem, "fix": error.fix}
     elif isinstance(error, ArgumentError):
-        fix = f"see `{error.parser.prog} --help`"
+        fix = argument_fix(error)
         fields |= {"message": error.message, "problem": error.message, "fix": fix}
     return {"error": fields}
 
@@ -95,6 +131,7 @@ def report_error(error: Exception, *, as_json: bool) -> None:
     if isinstance(error, ArgumentError):
         error.parser.print_usage(sys.stderr)
         print(f"{error.parser.prog}: error: {error.message}", file=sys.stderr)
+        print(f"  fix: {argument_fix(error)}", file=sys.stderr)
     else:
         print(f"lasertest: {error}", file=sys.stderr)
     if as_json:

@@ -9,7 +9,7 @@ the code that places, perturbs, draws or reports an obstacle need not ask which 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from typing import ClassVar, TypeAlias
 
 import numpy as np
@@ -209,6 +209,27 @@ class Cylinder:
 
 
 Obstacle: TypeAlias = Box | Cylinder
+
+# The decimals of every number of an obstacle as a drive places it and a pinned replay writes it
+# (m, rad): a micrometre, so that the replay file reads 3.6, not 3.5999999999999996, and drives
+# the very obstacle the failure drove. Not 4 (0.1 mm), though a placement's ray-cast margins are
+# at least 5 mm: no margin bounds how far an obstacle may move before a drive changes (a beam
+# grazing its edge, a costmap cell's boundary). A micrometre is far below what PyBullet's ray
+# tests resolve (about 1 mm, DESIGN.md section 10).
+PLACED_DECIMALS = 6
+_SIZES = frozenset({"length", "width", "radius", "height"})
+
+
+def placed(obstacle: Obstacle) -> Obstacle:
+    """`obstacle` as drives place it: each number rounded to PLACED_DECIMALS (-0.0 as 0.0), but
+    a size that would round to zero, which would be no obstacle, kept in full."""
+    values: dict[str, float] = {}
+    for field in fields(obstacle):
+        # float(): solver output may hold numpy floats.
+        value = float(getattr(obstacle, field.name))
+        rounded = round(value, PLACED_DECIMALS) + 0.0
+        values[field.name] = value if field.name in _SIZES and rounded <= 0.0 else rounded
+    return type(obstacle)(**values)
 
 
 def _where(obstacle: Obstacle) -> str:

@@ -14,10 +14,12 @@ from pathlib import Path
 
 import pytest
 
+from pytest_lasertest.model.policy import DEFAULT_POLICY
 from pytest_lasertest.plugin.options import (
     LaserOptions,
     default_profile,
     fresh_seed,
+    on_ci,
     parse_artifacts,
     parse_examples,
     parse_pairs,
@@ -53,10 +55,11 @@ def pytest_addoption(parser: pytest.Parser) -> None:
     )
     group.addoption(
         "--laser-seed",
-        default="random",
+        default=None,
         metavar="SEED",
-        help="seed for everything random in the run: 0..4294967295, or 'random' (default) for "
-        "a fresh one; the report header prints it for replay.",
+        help="seed for everything random in the run: 0..4294967295, or 'random' for a fresh "
+        "one (the default, but on a CI service, where each pairs file has a seed of its own, "
+        "fixed by its path, unless the profile is nightly); failures print it for replay.",
     )
     group.addoption(
         "--laser-profile",
@@ -74,10 +77,12 @@ def pytest_addoption(parser: pytest.Parser) -> None:
     )
     group.addoption(
         "--laser-policy",
-        default="candidate",
+        default=DEFAULT_POLICY,
         metavar="NAME",
-        help="what fails an item: 'candidate' (default, any failure of the candidate) or "
-        "'regression' (only where the baseline did not fail).",
+        help="what fails the run: 'regression' (default: only where the candidate fails and "
+        "the baseline passes, under every scan-noise draw; pre-existing and marginal failures "
+        "and losses of coverage are reported as expected failures) or 'candidate' (any "
+        "failure of the candidate).",
     )
     group.addoption(
         "--laser-artifacts",
@@ -151,31 +156,40 @@ def pytest_collect_file(file_path: Path, parent: pytest.Collector) -> pytest.Fil
 def pytest_runtest_makereport(
     item: pytest.Item, call: pytest.CallInfo[None]
 ) -> Generator[None, pytest.TestReport, pytest.TestReport]:
-    """A failing item's artifacts in its report, for pytest-html."""
+    """A failing item's artifacts in its report, for pytest-html; a failure the policy does not
+    fail the run on as an expected failure of its category (`LaserSession.pytest_report_teststatus`
+    names it)."""
     report = yield
     error = call.excinfo.value if call.excinfo is not None else None
+    if report.when != "call" or not item.get_closest_marker("lasertest"):
+        return report
     artifacts = getattr(error, "artifacts", ())
-    if report.when == "call" and artifacts and item.get_closest_marker("lasertest"):
+    if artifacts:
         from pytest_lasertest.plugin.html import add_extras
 
         add_extras(report, artifacts)
+    category = getattr(error, "category", None)
+    if category is not None:
+        # As pytest's own xfail does: skipped, with the reason JUnit XML and -rx show; the
+        # whole report stays in longrepr and the run's summary lists it.
+        report.outcome = "skipped"
+        report.wasxfail = str(error)
+        report.lasertest_category = category  # type: ignore[attr-defined]
     return report
 
 
 def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions:
     """The run's options, validated; a bad value is a UsageError naming it."""
-    seed = parse_seed(config.getoption("laser_seed"))
-    if seed is None:
-        # xdist workers take the controller's seed so that they all agree.
-        workerinput = getattr(config, "workerinput", {})
-        seed = workerinput[SEED_INPUT] if SEED_INPUT in workerinput else fresh_seed()
-    profile = config.getoption("laser_profile")
+    profile_text = config.getoption("laser_profile")
+    profile = (
+        parse_profile(profile_text) if profile_text is not None else default_profile(os.environ)
+    )
     artifacts = config.getoption("laser_artifacts") or beside_html_report(config)
     examples = config.getoption("laser_examples")
     summary = config.getoption("laser_summary")
     return LaserOptions(
-        seed=seed,
-        profile=parse_profile(profile) if profile is not None else default_profile(os.environ),
+        seed=run_seed(config, profile),
+        profile=profile,
         policy=parse_policy(config.getoption("laser_policy")),
         artifacts=(
             parse_artifacts(artifacts, config.invocation_params.dir)
@@ -187,7 +201,26 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
         summary=(
             parse_summary(summary, config.invocation_params.dir) if summary is not None else None
         ),
+        root=config.rootpath,
     )
+
+
+def run_seed(config: pytest.Config, profile: str) -> int | None:
+    """The run's seed: the one given; else, on a CI service outside the nightly profile, None
+    (each pairs file its own, fixed: the same commit gets the same verdict); else a fresh one,
+    which pytest-xdist workers take from the controller so that they all agree."""
+    text = config.getoption("laser_seed")
+    workerinput = getattr(config, "workerinput", {})
+    if text is not None:
+        seed = parse_seed(text)
+        if seed is not None:
+            return seed
+    elif on_ci(os.environ) and profile != "nightly":
+        return None
+    if SEED_INPUT in workerinput:
+        given: int = workerinput[SEED_INPUT]
+        return given
+    return fresh_seed()
 
 
 def beside_html_report(config: pytest.Config) -> str | None:

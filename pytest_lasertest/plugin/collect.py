@@ -10,18 +10,22 @@ the default.
 from __future__ import annotations
 
 import dataclasses
+import os
+from pathlib import Path
 
 import pytest
 
 from pytest_lasertest.inputs.errors import Location, SpecError
-from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.inputs.node import SpecNode, read_root
 from pytest_lasertest.model.sensor import same_sensing
 from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
+from pytest_lasertest.pairsfile.bundled import ROBOTS_DIR
 from pytest_lasertest.pairsfile.controller import (
     ControllerChoice,
     checked_factory,
     default_controller,
 )
+from pytest_lasertest.pairsfile.robot import resolve_robot
 from pytest_lasertest.plugin.items.control import ControlItem
 from pytest_lasertest.plugin.items.coverage import CoverageItem
 from pytest_lasertest.plugin.items.pinned import pinned_items
@@ -46,8 +50,17 @@ class PairFile(pytest.File):
             controller = self._controller(spec)
         except SpecError as error:
             raise self.CollectError(str(error)) from None
+        unread: tuple[str, ...] = ()
         if controller.name == "nav2":
-            controller = self._nav2(spec, controller)
+            controller, unread = self._nav2(spec, controller)
+        items = self._items(spec, controller)
+        if items and unread:  # a file that yields no items drives no Nav2: nothing to warn of
+            self._note_unread(spec, unread)
+        return items
+
+    def _items(self, spec: PairsFile, controller: ControllerChoice) -> list[pytest.Item]:
+        """Each pair's items: none where its scanners read alike, its pinned items where it pins
+        placements, else its coverage, control and placement items."""
         items: list[pytest.Item] = []
         for pair in spec.pairs:
             if same_sensing(pair.baseline.profile, pair.candidate.profile):
@@ -72,15 +85,15 @@ class PairFile(pytest.File):
             *placement_items(self, spec, pair, controller),
         ]
 
-    def _nav2(self, spec: PairsFile, controller: ControllerChoice) -> ControllerChoice:
-        """Nav2's choice, saying what it runs; and, once, as a warning pytest lists at the
-        end, which of the parameters the robot's params file sets the imitation does not
-        read."""
+    def _nav2(
+        self, spec: PairsFile, controller: ControllerChoice
+    ) -> tuple[ControllerChoice, tuple[str, ...]]:
+        """Nav2's choice, saying what it runs, and the parameters the robot's params file sets
+        that the imitation does not read (`_note_unread` warns of them)."""
         from pytest_lasertest.nav.nav2.params import configured
         from pytest_lasertest.nav.nav2.settings import describe
 
         config = configured(spec.robot.nav2, spec.robot.nav2_release)
-        self._note_unread(config.unmodelled)
         if spec.move_base_overrides:
             sections = sorted({section for section, _, _ in spec.move_base_overrides})
             self.warn(
@@ -90,17 +103,26 @@ class PairFile(pytest.File):
                     "to drive move_base, or give Nav2's in `navigation: {nav2: FILE}`"
                 )
             )
-        return dataclasses.replace(controller, stack=describe(config.settings))
+        return dataclasses.replace(controller, stack=describe(config.settings)), config.unmodelled
 
-    def _note_unread(self, unread: tuple[str, ...]) -> None:
-        if unread:
-            lines = "\n  ".join(unread)
-            self.warn(
-                UnreadParametersWarning(
-                    "the Nav2 imitation does not read these parameters of the params file "
-                    f"(docs/explanation/navigation.md says what it imitates):\n  {lines}"
-                )
+    def _note_unread(self, spec: PairsFile, unread: tuple[str, ...]) -> None:
+        """Warn, once per params file in the session, of the parameters it sets that the Nav2
+        imitation does not read, as a warning pytest lists at the end. Its text names the params
+        file and nothing else, so that pytest groups the same warning from every pairs file and
+        every pytest-xdist worker as one."""
+        name = params_file_name(spec, self.config.rootpath)
+        params = f"the params file {name}" if name else f"the robot {spec.robot.name}'s params file"
+        warned = LaserSession.of(self.config).unread_warned
+        if params in warned:
+            return
+        warned.add(params)
+        lines = "\n  ".join(unread)
+        self.warn(
+            UnreadParametersWarning(
+                f"the Nav2 imitation does not read these parameters of {params} "
+                f"(docs/explanation/navigation.md says what it imitates):\n  {lines}"
             )
+        )
 
     def _note_unchanged(self, pair: Pair) -> None:
         LaserSession.of(self.config).unchanged.add(
@@ -141,3 +163,39 @@ def _qualified_name(factory: object) -> str:
     module = getattr(factory, "__module__", None)
     name = getattr(factory, "__qualname__", None)
     return f"{module}:{name}" if module and name else repr(factory)
+
+
+def params_file_name(spec: PairsFile, root: Path) -> str | None:
+    """The Nav2 params file the pairs file's robots drive with, as warnings name it, the same
+    from every pairs file and worker: a bundled robot's from the package's parent directory,
+    else relative to the rootdir, else absolute; None if it cannot be found again."""
+    path = nav2_params_file(spec)
+    if path is None:
+        return None
+    path = Path(os.path.realpath(path))
+    for base in (ROBOTS_DIR.parent.parent, root.resolve()):
+        if path.is_relative_to(base):
+            return path.relative_to(base).as_posix()
+    return path.as_posix()
+
+
+def nav2_params_file(spec: PairsFile) -> Path | None:
+    """The file `nav2:` names, as `pairsfile/nav2_params.py` reads it: the pairs file's
+    `navigation: {nav2: FILE}`, else its robot's, relative to the file that names it; None if
+    it cannot be found again (the files were edited since they were read)."""
+    try:
+        sections = read_root(spec.path, what="pairs file", needs="").entries(what="sections")
+        navigation = sections.get("navigation")
+        named = navigation.entries(what="navigation").get("nav2") if navigation else None
+        if named is None:
+            named = _robot_nav2(sections["robot"])
+        return None if named is None else named.location.path.parent / named.text()
+    except (SpecError, KeyError, OSError):
+        return None
+
+
+def _robot_nav2(robot: SpecNode) -> SpecNode | None:
+    """The `nav2:` of a robot written in place, or of the robot.yaml `robot:` names."""
+    if not isinstance(robot.value, dict):
+        robot = read_root(resolve_robot(robot), what="robot file", needs="")
+    return robot.entries(what="robot fields").get("nav2")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import os
 import secrets
 from collections.abc import Iterable, Mapping
@@ -25,22 +26,32 @@ PAIRS_SUFFIXES = (".lasertest.yaml", ".lasertest.yml")
 class LaserOptions:
     """The run's settings: everything needed to replay it."""
 
-    seed: int
+    # --laser-seed; None: each pairs file's own seed, derived from its path (`derived_seed`),
+    # as on a CI service where no seed is given, so that a commit gets the same verdict twice.
+    seed: int | None
     profile: BudgetName  # --laser-profile
     policy: Policy
     artifacts: Path | None
     pairs: tuple[Path, ...]  # pairs files named on the command line, absolute
     examples: int | None = None  # overrides the profile's
     summary: Path | None = None  # --laser-summary: a Markdown file the table is appended to
+    root: Path = Path()  # the rootdir, against which a derived seed names a pairs file
+
+    def seed_of(self, path: Path) -> int:
+        """The seed of the pairs file at `path`: the run's, else the file's own."""
+        if self.seed is not None:
+            return self.seed
+        return derived_seed(item_path(path, self.root))
 
     @property
     def budget(self) -> Budget:
         """The profile's budget, with `--laser-examples` if given."""
         return BUDGETS[self.profile].with_examples(self.examples)
 
-    def recorded(self) -> dict[str, object]:
-        """The run's seed, profile and policy, as the artifacts record them."""
-        return {"seed": self.seed, "profile": self.profile, "policy": self.policy}
+    def recorded(self, path: Path) -> dict[str, object]:
+        """The seed of the pairs file at `path`, the profile and the policy, as the artifacts
+        record them."""
+        return {"seed": self.seed_of(path), "profile": self.profile, "policy": self.policy}
 
     def replay(self, nodeid: str, path: Path, here: Path) -> Replay:
         """How to run the item `nodeid`, of the pairs file at `path`, again as this run ran it,
@@ -51,19 +62,24 @@ class LaserOptions:
 
         _, _, name = nodeid.partition("::")
         file = item_path(path, here)
-        options = self.replay_options()
+        options = self.replay_options(self.seed_of(path))
         if not path.name.endswith(PAIRS_SUFFIXES):
             # pytest collects a pairs file of another name only when --laser-pairs names it.
             options = f"--laser-pairs={shell_word(file)} {options}"
         return Replay(f"{file}::{name}", options, here)
 
-    def replay_options(self) -> str:
-        """The options that reproduce this run."""
+    def replay_options(self, seed: int | None) -> str:
+        """The options that reproduce this run of a pairs file seeded `seed` (None: of any
+        pairs file, each with its own seed, as the run took them)."""
         examples = f" --laser-examples={self.examples}" if self.examples is not None else ""
-        return (
-            f"--laser-seed={self.seed} --laser-profile={self.profile} --laser-policy={self.policy}"
-            f"{examples}"
-        )
+        seeded = f"--laser-seed={seed} " if seed is not None else ""
+        return f"{seeded}--laser-profile={self.profile} --laser-policy={self.policy}{examples}"
+
+    def seed_line(self) -> str:
+        """How the run is seeded, for the report header."""
+        if self.seed is not None:
+            return f"seed {self.seed}"
+        return "seed fixed per pairs file, from its path (on CI; --laser-seed=random explores)"
 
 
 def item_path(path: Path, here: Path) -> str:
@@ -73,6 +89,19 @@ def item_path(path: Path, here: Path) -> str:
         return os.path.relpath(path.resolve(), here.resolve())
     except ValueError:  # another drive, on Windows
         return str(path.resolve())
+
+
+def derived_seed(name: str) -> int:
+    """The seed of the pairs file `name` (its path relative to the rootdir, as node ids name
+    it) where no seed is given on CI: the same file gets the same seed on every run, every
+    machine and every pytest-xdist worker, whatever else the run collects."""
+    digest = hashlib.sha256(f"lasertest-seed:{Path(name).as_posix()}".encode()).digest()
+    return int.from_bytes(digest[:4], "big")
+
+
+def on_ci(environ: Mapping[str, str]) -> bool:
+    """Whether the run is on a CI service, which sets CI (GitHub Actions, GitLab, ...)."""
+    return environ.get("CI", "").lower() not in ("", "0", "false", "no")
 
 
 def parse_seed(text: str) -> int | None:
@@ -122,15 +151,17 @@ def parse_examples(text: str) -> int:
 
 def default_profile(environ: Mapping[str, str]) -> BudgetName:
     """`ci` on a CI service (which sets CI), else `dev`."""
-    return "ci" if environ.get("CI", "").lower() not in ("", "0", "false", "no") else "dev"
+    return "ci" if on_ci(environ) else "dev"
 
 
 def parse_policy(text: str) -> Policy:
-    """What fails an item: any failure of the candidate, or only one the baseline does not share."""
+    """What fails the run: only a regression (the default), or any failure of the candidate."""
     if text not in POLICIES:
         raise pytest.UsageError(
-            f"--laser-policy={text!r} is not a policy: choose 'candidate' (fail whenever the "
-            "candidate fails) or 'regression' (fail only where the baseline did not)"
+            f"--laser-policy={text!r} is not a policy: choose 'regression' (the default: fail "
+            "only where the candidate fails and the baseline passes, under every noise draw) "
+            "or 'candidate' (fail whenever the candidate fails, pre-existing and marginal "
+            "failures and losses of coverage included)"
         )
     return text
 

@@ -31,6 +31,9 @@ if TYPE_CHECKING:
 
 # The pytest-xdist `workerinput` entry that hands the controller's seed to each worker.
 SEED_INPUT = "lasertest_seed"
+# The progress letter of each failure the policy notes without failing the run on it.
+NOTED_LETTERS = {"pre-existing": "p", "marginal": "m", "coverage-loss": "c"}
+NOTED_SECTION = "failures that do not fail the run (--laser-policy=candidate fails them)"
 # The pytest-xdist `workeroutput` entry that carries a worker's unchanged pairs to the controller.
 UNCHANGED_OUTPUT = "lasertest_unchanged"
 
@@ -48,6 +51,8 @@ class LaserSession:
         self.broken_files = 0
         self.summary = Summary()
         self.unchanged = Unchanged()
+        # The Nav2 params files whose unread parameters collection has warned of: once each.
+        self.unread_warned: set[str] = set()
         # Keyed by (pairs file path, pair name): every item of a pairs file drives with the
         # same controller, so the file and the pair name a plan and a control drive.
         self._scenes: dict[tuple[Path, str], Scene] = {}
@@ -102,7 +107,7 @@ class LaserSession:
             client, cache = self.physics_client(), self.run_cache()
             try:
                 self._controls[key] = drive_pair(
-                    spec, pair, (), self.options.seed, controller, client, cache
+                    spec, pair, (), self.options.seed_of(spec.path), controller, client, cache
                 )
             except ControllerError as error:
                 self._broken[key] = error
@@ -151,11 +156,14 @@ class LaserSession:
         from pytest_lasertest.search.trials import Setting
 
         client, cache = self.physics_client(), self.run_cache()
-        return Setting(spec, pair, controller, self.options.seed, client, cache)
+        seed = self.options.seed_of(spec.path)
+        return Setting(spec, pair, controller, seed, client, cache)
 
     def pytest_report_header(self, config: pytest.Config) -> str:
         artifacts = f", artifacts in {self.options.artifacts}" if self.options.artifacts else ""
-        return f"lasertest: {self.options.replay_options()}{artifacts}"
+        options = self.options
+        seed = "" if options.seed is not None else f"{options.seed_line()}; "
+        return f"lasertest: {seed}{options.replay_options(options.seed)}{artifacts}"
 
     @pytest.hookimpl(wrapper=True)
     def pytest_make_collect_report(
@@ -179,6 +187,20 @@ class LaserSession:
     def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
         if report.when == "call":
             self.summary.add(report.nodeid, report.failed, report.user_properties)
+            category = getattr(report, "lasertest_category", None)
+            if category is not None:
+                self.summary.note(report.nodeid, category, getattr(report, "wasxfail", ""))
+
+    @pytest.hookimpl(tryfirst=True)
+    def pytest_report_teststatus(
+        self, report: pytest.TestReport, config: pytest.Config
+    ) -> tuple[str, str, str] | None:
+        """A failure the policy notes without failing the run on it: its own outcome, counted
+        in the closing line (`3 pre-existing`), before pytest's xfail would claim it."""
+        category = getattr(report, "lasertest_category", None)
+        if category is None or report.when != "call":
+            return None
+        return category, NOTED_LETTERS.get(category, "x"), category.upper()
 
     @pytest.hookimpl(tryfirst=True)
     def pytest_sessionfinish(self, session: pytest.Session, exitstatus: int) -> None:
@@ -193,6 +215,7 @@ class LaserSession:
         artifacts = str(self.options.artifacts) if self.options.artifacts else None
         sections = {
             "lasertest: placements searched, per pair": self.summary.lines(artifacts),
+            f"lasertest: {NOTED_SECTION}": self.summary.noted_lines(),
             "lasertest: pairs whose scanners read alike": self.unchanged.lines(),
         }
         for title, lines in sections.items():
@@ -244,8 +267,9 @@ class XdistHooks:
         self.session = session
 
     def pytest_configure_node(self, node: Any) -> None:
-        """Hand the controller's seed to each worker."""
-        node.workerinput[SEED_INPUT] = self.session.options.seed
+        """Hand the controller's seed to each worker (none where each pairs file has its own)."""
+        if self.session.options.seed is not None:
+            node.workerinput[SEED_INPUT] = self.session.options.seed
 
     def pytest_testnodedown(self, node: Any, error: object) -> None:
         """Take the pairs a worker collected to no items: the controller collects nothing."""

@@ -7,18 +7,21 @@ from __future__ import annotations
 from pathlib import Path
 
 from pytest_lasertest.inputs.errors import display_path
-from pytest_lasertest.model.policy import Classification, Policy
+from pytest_lasertest.model.policy import NEAR_MISS, Classification, Policy
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.pairsfile import Pair
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.reports.formats import Replay, run_line
-from pytest_lasertest.search.drives import PairDrive
+from pytest_lasertest.search.drives import PairDrive, near_misses
 from pytest_lasertest.sim.faults import Frame
 from pytest_lasertest.sim.scenario import ControllerError, Run
 
 # What each class of failure means for the change.
 MEANINGS: dict[Classification, str] = {
-    "regression": "a regression: the baseline passes where the candidate fails",
+    "regression": "a regression: the baseline passes where the candidate fails, under every "
+    "draw of the scan noise",
+    "marginal": "marginal: the candidate fails where the baseline passes, but not under every "
+    "draw of the scan noise",
     "pre-existing": "pre-existing: the baseline fails here too",
     "improvement": "an improvement: the candidate passes where the baseline fails",
     "unchanged": "unchanged: both pass",
@@ -44,6 +47,7 @@ def drive_report(
         *details,
         run_line("baseline", pair.baseline.label, drives.baseline),
         run_line("candidate", pair.candidate.label, drives.candidate),
+        *redrive_lines(drives),
         f"  policy     {policy}",
         replay.line(),
     ]
@@ -80,6 +84,43 @@ def _frame_lines(frames: tuple[Frame, ...]) -> list[str]:
         f"  {label:<10} {display_path(Path(frame.path))}:{frame.line} in {frame.function}"
         for label, frame in zip(labels, frames, strict=True)
     ]
+
+
+def redrive_lines(drive: PairDrive) -> list[str]:
+    """Why a failure of the candidate alone is, or is not, a regression: a near miss of the
+    baseline's, and how it held under further draws of the scan noise (each draw's seed and both
+    robots' outcomes with their margins)."""
+    lines = [
+        f"  near miss  draw {draw}: the baseline passed {name} by only {margin * 1000:.1f} mm "
+        f"(under {NEAR_MISS * 1000:.0f} mm): both robots came that near the same failure"
+        for draw, again in enumerate(drive.draws)
+        for name, margin in near_misses(again.baseline, again.candidate)
+    ]
+    redrives, classification = drive.redrives, drive.classification
+    if not redrives:
+        if classification == "regression":
+            lines.append(
+                "  re-driven  no: neither scanner has scan noise, so every draw drives alike"
+            )
+        return lines
+    held = "held under each" if classification == "regression" else "did not hold under every"
+    lines.append(f"  re-driven  under {len(redrives)} further noise draws; the failure {held}:")
+    for draw, again in enumerate(redrives, start=1):
+        lines.append(
+            f"    draw {draw}   seed {again.candidate.scenario.seed}: baseline "
+            f"{_brief(again.baseline)}; candidate {_brief(again.candidate)}"
+        )
+    return lines
+
+
+def _brief(run: Run) -> str:
+    """`passed` or `FAILED (stuck)`, and every oracle's margin: `margins collision 212.0, ...`."""
+    failed = [name for name, verdict in run.verdicts.named() if not verdict.passed]
+    outcome = "passed" if not failed else f"FAILED ({', '.join(failed)})"
+    margins = ", ".join(
+        f"{name} {verdict.margin * 1000:.1f}" for name, verdict in run.verdicts.named()
+    )
+    return f"{outcome}, margins {margins} mm"
 
 
 def controller_line(controller: ControllerChoice) -> str:

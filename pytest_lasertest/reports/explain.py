@@ -1,10 +1,12 @@
 """What `lasertest explain` prints: which beams of each scanner read one witness's obstacle.
 
 Three scans are explained: the detector's and the misser's at the witness's anchor pose, and the
-misser's last scan at or before the witness's `until` instant. The JSON is a stable contract
-(documented in docs/reference/cli.md): `{"pair", "witness", "obstacle", "scans": [{"scanner",
-"role", "time", "pose", "hits": [{"beam", "angle", "range"}], "too_near", "misses",
-"clearance"}]}`.
+misser's last scan at or before the witness's `until` instant. A placement both scanners read, which
+the robot must act on (an `avoid-K` witness, `model/avoid.py`), has no misser: both scanners' scans
+at the anchor are explained, with what the robot must do about it and, where the candidate reads
+it nearer than its range_min, that scan. The JSON is a stable contract (documented in
+docs/reference/cli.md): `{"pair", "witness", "obstacle", "margins", "scans": [{"scanner", "role",
+"time", "pose", "hits": [{"beam", "angle", "range"}], "too_near", "misses", "clearance"}]}`.
 """
 
 from __future__ import annotations
@@ -19,15 +21,20 @@ from pytest_lasertest.model.plan import Witness
 from pytest_lasertest.model.route import scan_times
 from pytest_lasertest.model.verify import (
     EXACT_WITHIN,
+    REQUIRED_MARGIN,
     ROLES,
     Scanner,
     Scene,
+    Verification,
     miss_margins,
     readings,
 )
+from pytest_lasertest.reports.failure import margins_text, too_near_lines
 from pytest_lasertest.reports.formats import obstacle_json, pose_text
 
 Role = Literal["detector", "misser"]
+# The ray cast's margins (`Verification`), as `lasertest explain --json` gives them.
+MARGINS = ("detection", "concealment", "clearance", "obstruction", "too_near", "walls")
 
 
 @dataclass(frozen=True)
@@ -103,10 +110,14 @@ def explain_json(
     pair: str, witness: Witness, scans: tuple[ScanExplanation, ...]
 ) -> dict[str, object]:
     """The JSON contract of `lasertest explain --json`."""
+    verification = witness.verification
     return {
         "pair": pair,
         "witness": witness.id,
         "obstacle": obstacle_json(witness.placement.obstacle),
+        # m; inf where a margin does not apply (no misser to conceal it, no walls), and -inf for
+        # too_near where the placement is not judged on being read too near.
+        "margins": {name: getattr(verification, name) for name in MARGINS},
         "scans": [_scan_json(scan) for scan in scans],
     }
 
@@ -124,30 +135,78 @@ def _scan_json(scan: ScanExplanation) -> dict[str, object]:
     }
 
 
-def explain_text(pair: str, witness: Witness, scans: tuple[ScanExplanation, ...]) -> str:
-    """A heading, then a few lines per scan for people."""
+def explain_text(
+    pair: str,
+    witness: Witness,
+    scans: tuple[ScanExplanation, ...],
+    *,
+    scene: Scene | None = None,
+) -> str:
+    """A heading, then a few lines per scan for people; for a placement both scanners read,
+    what the robot must do about it, its margins and, given the `scene`, where the candidate
+    reads it too near."""
     placement = witness.placement
-    lines = [
-        f"{pair} {witness.id}: {placement.obstacle.describe()}",
-        f"  anchor t = {placement.anchor:.2f} s, until t = {placement.until:.2f} s",
-    ]
+    if placement.direction is not None:
+        lines = [
+            f"{pair} {witness.id}: {placement.obstacle.describe()}",
+            f"  anchor t = {placement.anchor:.2f} s, until t = {placement.until:.2f} s",
+        ]
+    else:
+        lines = _avoid_heading(pair, witness)
     for index, scan in enumerate(scans):
-        lines.append(_scan_heading(scan, later=index == len(scans) - 1))
+        later = placement.direction is not None and index == len(scans) - 1
+        lines.append(_scan_heading(scan, later=later, both=placement.direction is None))
         lines.extend(f"    {line}" for line in _scan_body(scan))
+    if placement.direction is None and scene is not None:
+        lines += too_near_lines(scene, placement.obstacle)
     return "\n".join(lines)
 
 
-def _scan_heading(scan: ScanExplanation, *, later: bool) -> str:
-    """`candidate (misser), last scan up to until, t = 3.78 s, pose (...): still misses it`."""
+def _avoid_heading(pair: str, witness: Witness) -> list[str]:
+    """What a placement both scanners read is, what the robot must do, and its margins."""
+    placement, verification = witness.placement, witness.verification
+    return [
+        f"{pair} {witness.id}: {placement.obstacle.describe()}",
+        "  a placement both scanners read, which the robot must act on: "
+        + "; and ".join(_avoid_reasons(verification)),
+        f"  anchor t = {placement.anchor:.2f} s: both read it there, and the robot braking from "
+        "there stops clear of it",
+        f"  margins {margins_text(verification)}",
+    ]
+
+
+def _avoid_reasons(verification: Verification) -> list[str]:
+    """Why the robot must act on a placement both read: it stands in the robot's way, or the
+    candidate reads it too near as the robot passes (`model/avoid.py`), or both."""
+    in_the_way = (
+        f"it reaches {verification.obstruction * 1000:.0f} mm into what the robot sweeps along "
+        "its path, so the robot must steer round it"
+    )
+    too_near = (
+        "the candidate reads it nearer than its range_min (-inf, which a costmap drops) as the "
+        "robot passes, where the baseline reads it in range"
+    )
+    reasons = [
+        reason
+        for reason, margin in (
+            (in_the_way, verification.obstruction),
+            (too_near, verification.too_near),
+        )
+        if margin >= REQUIRED_MARGIN
+    ]
+    return reasons or [in_the_way]
+
+
+def _scan_heading(scan: ScanExplanation, *, later: bool, both: bool = False) -> str:
+    """`candidate (misser), last scan up to until, t = 3.78 s, pose (...): still misses it`;
+    a scanner of a placement both read is named without a role."""
     when = "last scan up to until" if later else "at the anchor"
     if scan.role == "detector":
         verdict = "reads it" if scan.hits else "DOES NOT READ IT"
     else:
         verdict = "READS IT" if scan.hits else "still misses it" if later else "misses it"
-    return (
-        f"  {scan.scanner} ({scan.role}) {when}, t = {scan.time:.2f} s, "
-        f"pose {pose_text(*scan.pose)}: {verdict}"
-    )
+    who = scan.scanner if both else f"{scan.scanner} ({scan.role})"
+    return f"  {who} {when}, t = {scan.time:.2f} s, pose {pose_text(*scan.pose)}: {verdict}"
 
 
 def _scan_body(scan: ScanExplanation) -> list[str]:

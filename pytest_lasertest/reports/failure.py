@@ -28,7 +28,13 @@ from pytest_lasertest.model.verify import (
 )
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
-from pytest_lasertest.reports.drive import MEANINGS, controller_line, robot_line, run_properties
+from pytest_lasertest.reports.drive import (
+    MEANINGS,
+    controller_line,
+    redrive_lines,
+    robot_line,
+    run_properties,
+)
 from pytest_lasertest.reports.formats import Artifacts, Replay, pose_text, run_line, shell_word
 from pytest_lasertest.search.blame import TraitTried, blame_text
 from pytest_lasertest.search.offsets import AXES, OffsetBox
@@ -86,11 +92,12 @@ def failure_report(failure: PlacementFailure, replay: Replay, artifacts: Artifac
         *oracle_lines(result),
         f"  witness    {failure.witness.placement.obstacle.describe()}",
         f"  minimal    {result.placement.obstacle.describe()}",
-        f"  change     {result.offset.describe()} (the smallest the search found that fails)",
+        f"  change     {result.offset.describe()} ({_which_change(result, trials)})",
         f"  margins    {margins_text(result.verification)}",
         *beam_lines(trials.scene, result),
         run_line("baseline", pair.baseline.label, result.baseline),
         run_line("candidate", pair.candidate.label, result.candidate),
+        *(redrive_lines(result.drive) if result.drive is not None else []),
         *([f"  driver     {blame_text(failure.driver_tried)}"] if failure.driver_tried else []),
         search_line(trials, failure.box),
         *(f"  hypothesis {note}" for note in failure.notes),
@@ -99,6 +106,13 @@ def failure_report(failure: PlacementFailure, replay: Replay, artifacts: Artifac
         *_replay_lines(replay, artifacts, failure.unstored),
     ]
     return "\n".join(lines)
+
+
+def _which_change(result: TrialResult, trials: Trials) -> str:
+    """Whether the change shown is the search's smallest failure, or one it only noted."""
+    if result.fails(trials.policy):
+        return "the smallest the search found that fails"
+    return f"the first the search found; the {trials.policy} policy does not fail the run on it"
 
 
 def _replay_lines(replay: Replay, artifacts: Artifacts, unstored: str | None) -> list[str]:
@@ -245,6 +259,7 @@ def search_properties(box: OffsetBox, trials: Trials) -> list[tuple[str, object]
         ("lasertest.failures", trials.failures),
         # Found whether or not the policy fails the item on them.
         ("lasertest.regressions", trials.count("regression")),
+        ("lasertest.marginal", trials.count("marginal")),
         ("lasertest.pre_existing", trials.count("pre-existing")),
     ]
     if trials.simulations_to_failure is not None:

@@ -1,4 +1,6 @@
-"""The run's summary table: per pair, what its placement items searched and found.
+"""The run's summary: per pair, what its placement items searched and found; and every failure
+the run's policy noted without failing the run on it (pre-existing, marginal, a loss of
+coverage), each in plain sight with its headline.
 
 It is made from the reports alone (their outcome and `user_properties`), which pytest-xdist
 carries from the workers to the controller, so a distributed run sums up as a serial one.
@@ -10,6 +12,10 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
 ORACLES = ("collision", "stuck", "goal")
+NOTED_TITLE = (
+    "Failures that do not fail the run (the change did not cause them, or they did not hold "
+    "under every noise draw; --laser-policy=candidate fails them)"
+)
 COLUMNS = (
     "witnesses",
     "examples",
@@ -17,6 +23,7 @@ COLUMNS = (
     "failed",
     *ORACLES,
     "regressions",
+    "marginal",
     "pre-existing",
 )
 
@@ -31,6 +38,7 @@ class PairTally:
     failed: int = 0  # items the policy failed
     oracles: dict[str, int] = field(default_factory=lambda: dict.fromkeys(ORACLES, 0))
     regressions: int = 0  # items whose search found a regression, failed or not
+    marginal: int = 0  # items whose search found a failure that some noise draw undid
     pre_existing: int = 0  # items whose search found a failure the baseline shares
 
     def add(self, failed: bool, properties: Mapping[str, object]) -> None:
@@ -39,6 +47,7 @@ class PairTally:
         self.examples += _whole(properties.get("lasertest.examples"))
         self.rejected += _whole(properties.get("lasertest.rejected"))
         self.regressions += _whole(properties.get("lasertest.regressions")) > 0
+        self.marginal += _whole(properties.get("lasertest.marginal")) > 0
         self.pre_existing += _whole(properties.get("lasertest.pre_existing")) > 0
         if not failed:
             return
@@ -57,6 +66,7 @@ class PairTally:
             str(self.failed),
             *(str(self.oracles[oracle]) for oracle in ORACLES),
             str(self.regressions),
+            str(self.marginal),
             str(self.pre_existing),
         )
 
@@ -67,6 +77,21 @@ class Summary:
 
     pairs: dict[str, PairTally] = field(default_factory=dict)
     failing: list[str] = field(default_factory=list)  # the failing placement items' node ids
+    # node id -> (category, headline) of each failure the policy noted without failing on it
+    noted: dict[str, tuple[str, str]] = field(default_factory=dict)
+
+    def note(self, nodeid: str, category: str, headline: str) -> None:
+        """Keep a failure the run's policy does not fail the run on."""
+        self.noted[nodeid] = (category, headline)
+
+    def noted_lines(self) -> list[str]:
+        """`CATEGORY  NODEID: HEADLINE`, by category, then node id."""
+        entries = sorted(self.noted.items(), key=lambda entry: (entry[1][0], entry[0]))
+        width = max((len(category) for category, _ in self.noted.values()), default=0)
+        return [
+            f"{category.upper():<{width}}  {nodeid}: {headline}"
+            for nodeid, (category, headline) in entries
+        ]
 
     def add(self, nodeid: str, failed: bool, properties: Iterable[tuple[str, object]]) -> None:
         """Count a placement item's call report; other reports leave no trace."""
@@ -79,17 +104,25 @@ class Summary:
             self.failing.append(nodeid)
 
     def markdown(self, pictures: Mapping[str, str]) -> str:
-        """The table as GitHub-flavoured Markdown, and each failing placement item with the
-        path of its picture (`pictures`, by node id, when the run wrote artifacts)."""
-        if not self.pairs:
+        """The table as GitHub-flavoured Markdown, each failing placement item with the path of
+        its picture (`pictures`, by node id, when the run wrote artifacts), and the failures
+        that do not fail the run."""
+        if not self.pairs and not self.noted:
             return ""
-        header, *rows = self._rows()
-        lines = ["### lasertest: placements searched, per pair", "", _markdown_row(header)]
-        lines.append("| --- |" + " ---: |" * len(COLUMNS))
-        lines += [_markdown_row(row) for row in rows]
+        lines = ["### lasertest: placements searched, per pair"]
+        if self.pairs:
+            header, *rows = self._rows()
+            lines += ["", _markdown_row(header), "| --- |" + " ---: |" * len(COLUMNS)]
+            lines += [_markdown_row(row) for row in rows]
         if self.failing:
             lines += ["", "Failing placement items:", ""]
             lines += [_failing(nodeid, pictures.get(nodeid)) for nodeid in sorted(self.failing)]
+        if self.noted:
+            lines += ["", f"{NOTED_TITLE}:", ""]
+            lines += [
+                f"- {category}: `{nodeid}`: {headline}"
+                for nodeid, (category, headline) in sorted(self.noted.items())
+            ]
         return "\n".join(lines) + "\n"
 
     def _rows(self) -> list[tuple[str, ...]]:

@@ -4,15 +4,28 @@ The baseline and the candidate are the same robot with different scanners: each 
 pairs file's route with a fresh controller from the same factory (the one the pairs file, a
 conftest hook or the default chose), in a world holding the given obstacles (none for the pair's
 control run), with scan noise from the run's seed. Runs go through the session's `RunCache`.
+Where the candidate fails and the baseline passes, both drive again under `REDRAWS` further
+draws of the scan noise, and only a failure that holds under every draw is a regression
+(`model/policy.py`).
 """
 
 from __future__ import annotations
 
 from collections import OrderedDict
+from collections.abc import Callable
 from dataclasses import dataclass
 
-from pytest_lasertest.model.obstacles import Obstacle
-from pytest_lasertest.model.policy import Policy, fails
+from pytest_lasertest.model.obstacles import Obstacle, placed
+from pytest_lasertest.model.policy import (
+    NEAR_MISS,
+    NEAR_MISS_ORACLES,
+    REDRAWS,
+    Classification,
+    Policy,
+    classify,
+    fails,
+    noise_seed,
+)
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.pairsfile import Pair, PairsFile
@@ -23,14 +36,73 @@ from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
 
 @dataclass(frozen=True, eq=False)
 class PairDrive:
-    """The runs of the baseline and the candidate through one world."""
+    """The runs of the baseline and the candidate through one world, and, where the candidate
+    alone failed, both again under further draws of the scan noise."""
 
     baseline: Run
     candidate: Run
+    redrives: tuple[PairDrive, ...] = ()  # under draws 1, 2, ... in order
+
+    @property
+    def classification(self) -> Classification:
+        """What the change did here, over every draw (see `policy.classify`)."""
+        redrawn = [(drive.baseline.passed, drive.candidate.passed) for drive in self.redrives]
+        near = any(near_misses(drive.baseline, drive.candidate) for drive in self.draws)
+        return classify(self.baseline.passed, self.candidate.passed, redrawn, near)
+
+    @property
+    def draws(self) -> tuple[PairDrive, ...]:
+        """This drive, then its re-drives."""
+        return (self, *self.redrives)
 
     def fails(self, policy: Policy) -> bool:
         """Whether the policy fails these runs (see `policy.fails`)."""
-        return fails(policy, self.baseline.passed, self.candidate.passed)
+        return fails(policy, self.classification)
+
+    @property
+    def simulations(self) -> int:
+        """The runs this holds, the re-drives included."""
+        return 2 + sum(drive.simulations for drive in self.redrives)
+
+
+def near_misses(baseline: Run, candidate: Run) -> list[tuple[str, float]]:
+    """The oracles (collision, stuck) the candidate failed and the baseline passed by less than
+    `NEAR_MISS`, each with the baseline's margin (m)."""
+    verdicts = dict(baseline.verdicts.named())
+    return [
+        (name, verdicts[name].margin)
+        for name, verdict in candidate.verdicts.named()
+        if name in NEAR_MISS_ORACLES
+        and not verdict.passed
+        and verdicts[name].passed
+        and verdicts[name].margin < NEAR_MISS
+    ]
+
+
+def redrawn(
+    first: tuple[Run, Run | None], drive: Callable[[str, int], Run]
+) -> tuple[PairDrive, ...]:
+    """Both robots again under each further draw of the scan noise, while the candidate alone
+    keeps failing; none where `first` (the candidate's run, then the baseline's, driven only if
+    the candidate failed) is no regression or a near miss of the baseline's, or where neither
+    scanner is noisy, so that every draw is the same. `drive(side, seed)` drives one side
+    ("baseline" or "candidate")."""
+    candidate, baseline = first
+    if candidate.passed or baseline is None or not baseline.passed:
+        return ()
+    if near_misses(baseline, candidate):
+        return ()  # marginal already
+    scenario = candidate.scenario
+    if scenario.profile.noise is None and baseline.scenario.profile.noise is None:
+        return ()
+    drives: list[PairDrive] = []
+    for draw in range(1, REDRAWS + 1):
+        seed = noise_seed(scenario.seed, draw)
+        again = PairDrive(baseline=drive("baseline", seed), candidate=drive("candidate", seed))
+        drives.append(again)
+        if not again.baseline.passed or again.candidate.passed:
+            break  # marginal already: the draws left cannot make it a regression
+    return tuple(drives)
 
 
 class RunCache:
@@ -77,27 +149,28 @@ def drive_pair(
     cache: RunCache,
 ) -> PairDrive:
     """Drive both robots of the pair through a world holding `obstacles`, built in `client`
-    (see `run_scenario`), each with a controller from `controller`."""
-    return PairDrive(
-        baseline=cache.run(
-            scenario(spec, pair.baseline.profile, obstacles, seed), controller, client
-        ),
-        candidate=cache.run(
-            scenario(spec, pair.candidate.profile, obstacles, seed), controller, client
-        ),
-    )
+    (see `run_scenario`), each with a controller from `controller`; where the candidate alone
+    fails, again under further noise draws (`redrawn`)."""
+
+    def side(name: str, noise: int) -> Run:
+        profile = pair.candidate.profile if name == "candidate" else pair.baseline.profile
+        return cache.run(scenario(spec, profile, obstacles, noise), controller, client)
+
+    baseline, candidate = side("baseline", seed), side("candidate", seed)
+    return PairDrive(baseline, candidate, redrawn((candidate, baseline), side))
 
 
 def scenario(
     spec: PairsFile, profile: LaserProfile, obstacles: tuple[Obstacle, ...], seed: int
 ) -> Scenario:
     """One robot of the pairs file, carrying `profile`, on the file's route through a world
-    holding `obstacles`, with scan noise from `seed`."""
+    holding `obstacles`, each placed to a micrometre (`obstacles.placed`: a pinned replay writes
+    them so, and drives the same), with scan noise from `seed`."""
     world = spec.world
     return Scenario(
         spec.robot,
         profile,
-        obstacles,
+        tuple(placed(obstacle) for obstacle in obstacles),
         world.start,
         world.route,
         world.time_limit,

@@ -3,22 +3,24 @@
 A trial moves the witness's obstacle by an offset, checks with the exact ray cast that it still
 discriminates, and drives the candidate through it. Only when the candidate fails is the
 baseline driven on the same placement, to tell a regression (the baseline is fine there) from a
-pre-existing failure (both fail). The policy decides which of them fail the item. Runs come from
-the session's cache, so the shrinker revisiting a scenario costs nothing; after the first
-failure, new simulations are counted against the shrink budget.
+pre-existing failure (both fail); a regression is then driven again under further draws of the
+scan noise, and is marginal unless it holds under every one (`drives.redrawn`). The policy
+decides which of them fail the item; the re-drives count among the item's simulations. Runs
+come from the session's cache, so the shrinker revisiting a scenario costs nothing; after the
+first failure, new simulations are counted against the shrink budget.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from pytest_lasertest.model.policy import Classification, Policy, classify, fails
+from pytest_lasertest.model.policy import Classification, Policy, fails
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.model.verify import Placement, Scene, Verification, verify
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.constraints import admits, obstacle_variables
 from pytest_lasertest.pairsfile.controller import ControllerChoice
-from pytest_lasertest.search.drives import RunCache, scenario
+from pytest_lasertest.search.drives import PairDrive, RunCache, redrawn, scenario
 from pytest_lasertest.search.offsets import Offset, Untested, discriminates, perturbed
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Run, Scenario
@@ -37,6 +39,7 @@ class TrialResult:
     verification: Verification
     candidate: Run
     baseline: Run | None  # driven only when the candidate failed
+    redrives: tuple[PairDrive, ...] = ()  # both again, where the candidate alone failed
 
     @property
     def baseline_passed(self) -> bool:
@@ -44,12 +47,22 @@ class TrialResult:
         return self.baseline.passed if self.baseline is not None else True
 
     @property
+    def drive(self) -> PairDrive | None:
+        """Both robots' runs and re-drives; None where the candidate passed and the baseline was
+        not driven."""
+        if self.baseline is None:
+            return None
+        return PairDrive(self.baseline, self.candidate, self.redrives)
+
+    @property
     def classification(self) -> Classification:
-        return classify(self.baseline_passed, self.candidate.passed)
+        """What the change did here, over every draw of the scan noise."""
+        drive = self.drive
+        return "unchanged" if drive is None else drive.classification
 
     def fails(self, policy: Policy) -> bool:
         """Whether the policy fails the item on this trial (see `policy.fails`)."""
-        return fails(policy, self.baseline_passed, self.candidate.passed)
+        return fails(policy, self.classification)
 
     def oracles(self) -> list[str]:
         """The candidate's failing oracles, by name."""
@@ -75,13 +88,18 @@ class Setting:
     client: PhysicsClient
     cache: RunCache
 
-    def scenario(self, profile: LaserProfile, placement: Placement) -> Scenario:
-        """One robot of the pair, carrying `profile`, past the placement's obstacle."""
-        return scenario(self.spec, profile, (placement.obstacle,), self.seed)
+    def scenario(
+        self, profile: LaserProfile, placement: Placement, noise: int | None = None
+    ) -> Scenario:
+        """One robot of the pair, carrying `profile`, past the placement's obstacle, with scan
+        noise from `noise` (the run's seed if None)."""
+        seed = self.seed if noise is None else noise
+        return scenario(self.spec, profile, (placement.obstacle,), seed)
 
-    def drive(self, profile: LaserProfile, placement: Placement) -> Run:
+    def drive(self, profile: LaserProfile, placement: Placement, noise: int | None = None) -> Run:
         """The run of `scenario`, through the session's cache."""
-        return self.cache.run(self.scenario(profile, placement), self.controller, self.client)
+        world = self.scenario(profile, placement, noise)
+        return self.cache.run(world, self.controller, self.client)
 
 
 @dataclass
@@ -121,12 +139,19 @@ class Trials:
         return _outcome(result)
 
     def trial(self, offset: Offset, placement: Placement) -> TrialResult:
-        """Drive the candidate through the placement, and the baseline if the candidate fails."""
+        """Drive the candidate through the placement, the baseline if the candidate fails, and
+        both again under further noise draws if only the candidate failed."""
         pair = self.setting.pair
         candidate = self._drive(pair.candidate.profile, placement)
         self._at_candidate = self.simulations
         baseline = None if candidate.passed else self._drive(pair.baseline.profile, placement)
-        return TrialResult(offset, placement, verify(self.scene, placement), candidate, baseline)
+
+        def side(name: str, noise: int) -> Run:
+            return self._drive(getattr(pair, name).profile, placement, noise)
+
+        redrives = redrawn((candidate, baseline), side)
+        verification = verify(self.scene, placement)
+        return TrialResult(offset, placement, verification, candidate, baseline, redrives)
 
     @property
     def examples(self) -> int:
@@ -165,16 +190,27 @@ class Trials:
             return 0
         return self.simulations - self.simulations_to_failure
 
-    def _drive(self, profile: LaserProfile, placement: Placement) -> Run:
+    def _drive(self, profile: LaserProfile, placement: Placement, noise: int | None = None) -> Run:
         setting = self.setting
-        if not setting.cache.knows(setting.scenario(profile, placement), setting.controller):
+        if not setting.cache.knows(setting.scenario(profile, placement, noise), setting.controller):
             # The shrink budget bounds only what follows the first failure: without one, a budget
             # of 0 would refuse the first trial too.
             shrinking = self.simulations_to_failure is not None
             if shrinking and self.shrink_simulations >= self.shrink_budget:
                 raise Untested(BUDGET_SPENT)
             self.simulations += 1
-        return setting.drive(profile, placement)
+        return setting.drive(profile, placement, noise)
+
+
+def noted_result(trials: Trials) -> TrialResult | None:
+    """Where the search found no failure its policy fails, the first trial in which the
+    candidate failed all the same, a marginal one before a pre-existing one: the item reports
+    it without failing the run."""
+    for kind in ("marginal", "pre-existing"):
+        for result in trials.results.values():  # in the order they were tried
+            if result.classification == kind and not result.fails(trials.policy):
+                return result
+    return None
 
 
 def _outcome(result: TrialResult) -> str:

@@ -6,7 +6,8 @@ query per way and shape, and its explanation says for each way what rules it out
 in words. A cheap relaxation of the detector's reading is tried first; only a way it cannot rule
 out meets the disjunction over the beams that can reach it. A way of many options (the gaps
 between hundreds of beams) is asked a few dozen options at a time, and only about the gaps an
-obstacle of the smallest size can reach.
+obstacle of the smallest size can reach. The misser's last scan before the anchor is asked
+first; an earlier scan, from where the robot was then, that reads a model joins the question.
 """
 
 from __future__ import annotations
@@ -21,7 +22,15 @@ from pytest_lasertest.model.geometry import FloatArray
 from pytest_lasertest.model.obstacles import Box
 from pytest_lasertest.model.plan import Status, Witness
 from pytest_lasertest.model.route import scan_times, swept_polygons
-from pytest_lasertest.model.verify import ROLES, Direction, Placement, Scene, verify
+from pytest_lasertest.model.verify import (
+    REQUIRED_MARGIN,
+    ROLES,
+    Direction,
+    Placement,
+    Scene,
+    Verification,
+    verify,
+)
 from pytest_lasertest.solver.backend import Solution, Workspace
 from pytest_lasertest.solver.encoding import VARIABLES, ObstacleShape, all_of, any_of
 from pytest_lasertest.solver.scans import (
@@ -36,6 +45,7 @@ from pytest_lasertest.solver.scans import (
     reaching_beams,
 )
 from pytest_lasertest.solver.search import (
+    MAX_REFINEMENTS,
     SearchSettings,
     bounds,
     constraint_blocks,
@@ -47,6 +57,8 @@ PROOF_VARIABLES = (*VARIABLES, "QX", "QY")
 BEAM_CHUNK = 32
 # Ways of missing that a scanner's own figures rule out, not worth a word.
 IMPOSSIBLE = ("outside", "near")
+# The label of a block that makes one of the misser's earlier scans miss, before its time (s).
+EARLIER = "misser at"
 
 
 @dataclass(frozen=True)
@@ -116,6 +128,27 @@ class Question:
         return poses
 
     @functools.cached_property
+    def reading(self) -> Reading:
+        """Where the detector at the anchor can read an obstacle: from its origin, out to its
+        range_max, beyond its range_min."""
+        detector = self.scene.detector(self.direction)
+        origins, _ = detector.rays(self.pose()[np.newaxis, :])
+        centre = (float(origins[0, 0, 0]), float(origins[0, 0, 1]))
+        return Reading(centre, detector.range_max, detector.range_min)
+
+    def missed_at(self, time: float, within: Region | None) -> str:
+        """The misser's scan at `time` misses the obstacle, in any of its ways that can hold an
+        obstacle in `within` (or the question's region)."""
+        misser = self.scene.misser(self.direction)
+        pose = self.scene.path.poses_at(np.array([time]))[0]
+        ways = miss_ways(
+            self.shape, misser, pose, within or self.region, self.settings.min_size, self.reading
+        )
+        if misser.scan_height <= self.scene.detector(self.direction).scan_height:
+            ways["below"] = []  # as in `prove`: nothing stands above one plane, below a lower one
+        return any_of([option for options in ways.values() for option in options])
+
+    @functools.cached_property
     def region(self) -> Region:
         """A box holding every obstacle that reaches into the robot's way after it could stop."""
         scene = self.scene
@@ -135,17 +168,17 @@ def prove(
 ) -> Proof:
     """Whether any placement of these shapes discriminates at the anchor, with the reasons."""
     misser = scene.misser(direction)
+    # Only the misser's last scan is asked at first; an earlier one that reads a model joins
+    # the question then (`_confirmed`).
     last_scan = scan_times(misser.update_rate, anchor)[-1:]
     pose = scene.path.poses_at(last_scan)[0]
     detector = scene.detector(direction)
-    origins, _ = detector.rays(scene.path.poses_at(np.array([anchor])))
-    centre = (float(origins[0, 0, 0]), float(origins[0, 0, 1]))
-    read = Reading(centre, detector.range_max, detector.range_min)
-    reasons: dict[str, str] = {}
+    # Each way's reasons, for every shape: a shape may need more of the question than another.
+    cores: dict[str, set[str]] = {}
     workspace = Workspace()
     for shape in shapes:
         question = Question(scene, direction, anchor, shape, settings)
-        region = question.region
+        region, read = question.region, question.reading
         ways = miss_ways(shape, misser, pose, region, settings.min_size, read)
         # Where each option keeps the obstacle, for the ways that keep it in a small part of
         # the region: the detector's disjunction then holds only the beams that reach it.
@@ -167,7 +200,8 @@ def prove(
                     f"Z3 could not decide at t = {anchor:.2f} s within its rlimit "
                     f"({settings.rlimit:,} per query; {outcome.reason})",
                 )
-            reasons.setdefault(way, _why(scene, direction, settings, way, outcome))
+            cores.setdefault(way, set()).update(outcome.core)
+    reasons = {way: _why(scene, direction, settings, way, core) for way, core in cores.items()}
     return Proof("unsat", _sentence(scene, direction, anchor, settings.min_size, reasons))
 
 
@@ -219,7 +253,7 @@ def _rule_out_chunk(
             return _rule_out_by_beams(question, way, options, workspace, within)
         if solution.verdict != "sat":
             return solution
-    return _witness(question, way, solution)
+    return _confirmed(question, way, blocks, solution, workspace, within)
 
 
 def _rule_out_by_beams(
@@ -237,22 +271,77 @@ def _rule_out_by_beams(
         }
         solution = workspace.solve(VARIABLES, blocks, (), question.settings.rlimit)
         if solution.verdict == "sat":
-            return _witness(question, way, solution)
+            return _confirmed(question, way, blocks, solution, workspace, within)
         if solution.verdict == "unknown":
             return solution
         core.update(solution.core)
     return Solution("unsat", {}, tuple(sorted(core)))
 
 
-def _witness(question: Question, way: str, solution: Solution) -> Solution | Witness:
-    """The model's placement as a witness, if the ray cast confirms it."""
-    obstacle = obstacle_of(question.shape, solution)
-    placement = Placement(obstacle, question.direction, question.anchor, question.anchor)
-    verification = verify(question.scene, placement)
-    if not verification.holds():
-        return Solution("unknown", {}, reason=f"a model of the {way} case failed the ray cast")
-    x, y, yaw = (float(value) for value in question.pose())
-    return Witness(0, placement, verification, (x, y, yaw))
+def _confirmed(
+    question: Question,
+    way: str,
+    blocks: dict[str, str],
+    solution: Solution,
+    workspace: Workspace,
+    within: Region | None,
+) -> Solution | Witness:
+    """The model's placement as a witness once the ray cast confirms it, or the answer of the
+    question refined until it does.
+
+    The question asks only the misser's last scan before the anchor, but a witness must be
+    missed by every scan up to the anchor, taken as the robot moved: where the obstacle fits a
+    gap only just, a scan a few millimetres back reads it. Such scans join the question, each
+    with every way it misses (the whole disjunction, so an unsat answer still proves), and it
+    is asked again, as a search refines its query.
+    """
+    blocks = dict(blocks)
+    for _ in range(MAX_REFINEMENTS):
+        placement = Placement(
+            obstacle_of(question.shape, solution),
+            question.direction,
+            question.anchor,
+            question.anchor,
+        )
+        verification = verify(question.scene, placement)
+        if verification.holds():
+            x, y, yaw = (float(value) for value in question.pose())
+            return Witness(0, placement, verification, (x, y, yaw))
+        earlier = _earlier_scans(question, verification, blocks)
+        if not earlier:
+            return Solution("unknown", {}, reason=f"a model of the {way} case failed the ray cast")
+        for time in earlier:
+            blocks[_earlier_label(time)] = question.missed_at(time, within)
+        solution = workspace.solve(VARIABLES, blocks, (), question.settings.rlimit)
+        if solution.verdict != "sat":
+            return solution
+    return Solution("unknown", {}, reason=f"{MAX_REFINEMENTS} refinements did not converge")
+
+
+def _earlier_scans(
+    question: Question, verification: Verification, blocks: dict[str, str]
+) -> list[float]:
+    """A few of the misser's scans (s) that read the model and are not yet asked, when only
+    the misser fails the model; none when it fails anything else, which the question promised
+    and a refinement cannot mend."""
+    promised = min(
+        verification.detection,
+        verification.clearance,
+        verification.obstruction,
+        verification.walls,
+    )
+    times = np.array(verification.seen_by_misser_at)
+    if promised < REQUIRED_MARGIN or not len(times):
+        return []
+    # Scans from one pose ask the same (the robot stood still between them): the first will do.
+    _, first = np.unique(question.scene.path.poses_at(times), axis=0, return_index=True)
+    seen = [float(time) for time in times[np.sort(first)] if _earlier_label(time) not in blocks]
+    return sorted({seen[0], seen[len(seen) // 2], seen[-1]}) if seen else []
+
+
+def _earlier_label(time: float) -> str:
+    """The label of the block that makes the misser's scan at `time` (s) miss."""
+    return f"{EARLIER} {time:.3f}"
 
 
 def _around(boxes: list[Region]) -> Region:
@@ -264,11 +353,11 @@ def _around(boxes: list[Region]) -> Region:
 
 
 def _why(
-    scene: Scene, direction: Direction, settings: SearchSettings, way: str, solution: Solution
+    scene: Scene, direction: Direction, settings: SearchSettings, way: str, core: set[str]
 ) -> str:
     detector_side, _ = ROLES[direction]
     detector = scene.detector(direction)
-    others = [label for label in solution.core if label != "misser"]
+    others = [label for label in sorted(core) if label != "misser"]
     # A way with no option: the region, or the detector's own range (scans.miss_ways), left none.
     beyond = (
         f"and the {detector_side}'s ({detector.range_max:g} m) reaches no further"
@@ -282,6 +371,14 @@ def _why(
             "between": f"and nothing {settings.min_size:g} m wide fits between them where the "
             "robot could meet it",
         }[way]
+    return "ruled out by " + " and ".join(_named(scene, direction, settings, others))
+
+
+def _named(
+    scene: Scene, direction: Direction, settings: SearchSettings, labels: list[str]
+) -> list[str]:
+    """The blocks of an unsat core in words; the misser's earlier scans in one phrase."""
+    detector_side, _ = ROLES[direction]
     words = {
         "bounds": f"the obstacle's size ({settings.min_size:g}-{settings.max_size:g} m)",
         "robot": f"room for the robot to stop ({scene.robot.braking_distance:.2f} m)",
@@ -290,8 +387,17 @@ def _why(
         "walls": "standing clear of the walls",
         "detector": f"the {detector_side}'s reading",
     }
-    named = [words[label] if label in words else _constraint(settings, label) for label in others]
-    return "ruled out by " + " and ".join(named)
+    earlier = [label.removeprefix(EARLIER).strip() for label in labels if label.startswith(EARLIER)]
+    named = [
+        words[label] if label in words else _constraint(settings, label)
+        for label in labels
+        if not label.startswith(EARLIER)
+    ]
+    if earlier:
+        scans = "scan" if len(earlier) == 1 else "scans"
+        times = ", ".join(f"{float(time):.2f}" for time in sorted(earlier, key=float))
+        named.append(f"its earlier {scans} at t = {times} s, from where the robot was then")
+    return named
 
 
 def _constraint(settings: SearchSettings, label: str) -> str:

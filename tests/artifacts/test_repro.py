@@ -20,7 +20,7 @@ from pytest_lasertest.artifacts.repro import repro_yaml, write_repro
 from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
 from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
-from pytest_lasertest.pairsfile.placements import PinnedPlacement, obstacle_fields
+from pytest_lasertest.pairsfile.placements import PinnedPlacement
 from tests.helpers import EXAMPLES
 from tests.helpers.git import commit_everything
 from tests.helpers.model import RECORDED
@@ -56,7 +56,17 @@ def assert_replays(
     assert pair.baseline == pair_named(original, name).baseline
     assert pair.candidate == pair_named(original, name).candidate
     (placement,) = pair.placements
-    assert dataclasses.replace(placement, location=pinned.location) == pinned
+    assert_within_a_micrometre(placement.obstacle, pinned.obstacle)
+    replayed = dataclasses.replace(placement, obstacle=pinned.obstacle, location=pinned.location)
+    assert replayed == pinned
+
+
+def assert_within_a_micrometre(replayed: Obstacle, pinned: Obstacle) -> None:
+    """The repro pins each of the obstacle's numbers (m, rad) to 6 decimals, nothing coarser."""
+    assert type(replayed) is type(pinned)
+    for field in dataclasses.fields(pinned):
+        written, given = getattr(replayed, field.name), getattr(pinned, field.name)
+        assert written == pytest.approx(given, rel=0.0, abs=5e-7), field.name
 
 
 # The repro
@@ -88,8 +98,10 @@ def test_a_repro_keeps_the_model_overrides_as_written_and_drops_settings_and_oth
         "max_angle": 1.57,
         "range": {"max": 10.0},
     }
+    # RECORDED's numbers, as the repro pins them: to 6 decimals.
+    obstacle = {"shape": "cylinder", "x": 5.943, "y": 0.3, "radius": 0.033333, "height": 0.323}
     assert written["pairs"]["size"]["placements"] == [
-        {"obstacle": obstacle_fields(RECORDED), "seed": 1234, "direction": "candidate-misses"}
+        {"obstacle": obstacle, "seed": 1234, "direction": "candidate-misses"}
     ]
 
 
@@ -282,8 +294,28 @@ def test_every_obstacle_and_seed_comes_back_equal_from_its_repro(
     original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
     pinned = pinned_for(pair_named(original, "size"), obstacle, seed)
     repro = replay(original, "size", pinned, tmp_path / "property.lasertest.yaml")
-    assert repro.pairs[0].placements[0].obstacle == obstacle
+    assert_within_a_micrometre(repro.pairs[0].placements[0].obstacle, obstacle)
     assert repro.pairs[0].placements[0].seed == seed
+
+
+def test_a_repro_writes_the_pinned_obstacle_s_numbers_rounded_not_in_full(tmp_path: Path) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pair = pair_named(original, "size")
+    box = Box(3.5999999999999996, 0.1 + 0.2, -1e-12, 1.0 / 30.0, 0.05, 0.323)
+    text = repro_yaml(original, pair, pinned_for(pair, box), tmp_path / "r.lasertest.yaml", ())
+    assert (
+        "{shape: box, x: 3.6, y: 0.3, yaw: 0.0, length: 0.033333, width: 0.05, height: 0.323}"
+        in text
+    )
+
+
+def test_a_size_too_small_to_round_is_written_in_full_so_the_obstacle_stays(
+    tmp_path: Path,
+) -> None:
+    original = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+    pinned = pinned_for(pair_named(original, "size"), Cylinder(5.0, 0.0, 4e-7, 0.5))
+    repro = replay(original, "size", pinned, tmp_path / "thin.lasertest.yaml")
+    assert repro.pairs[0].placements[0].obstacle == Cylinder(5.0, 0.0, 4e-7, 0.5)
 
 
 @pytest.fixture

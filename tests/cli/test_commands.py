@@ -170,7 +170,15 @@ def test_explain_json_keeps_the_documented_keys(
     size_pairs: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     explanation = explained(size_pairs, "size", "baseline-misses-0", capsys)
-    assert set(explanation) == {"pair", "witness", "obstacle", "scans"}
+    assert set(explanation) == {"pair", "witness", "obstacle", "margins", "scans"}
+    assert set(explanation["margins"]) == {
+        "detection",
+        "concealment",
+        "clearance",
+        "obstruction",
+        "too_near",
+        "walls",
+    }
     assert (explanation["pair"], explanation["witness"]) == ("size", "baseline-misses-0")
     assert explanation["obstacle"]["shape"] in {"box", "cylinder"}
     assert [scan["scanner"] for scan in explanation["scans"]] == [
@@ -210,8 +218,8 @@ def test_explain_of_an_unknown_witness_names_the_witnesses_and_exits_2(
     assert main(["explain", str(size_pairs), "size", "candidate-misses-1"]) == 2
     assert capsys.readouterr().err == (
         "lasertest: pair 'size' has no witness 'candidate-misses-1'\n"
-        "  fix: give one of the witnesses `lasertest plan` prints for it: "
-        "candidate-misses-0, baseline-misses-0\n"
+        "  fix: give one of the witnesses `lasertest plan` prints for it (candidate-misses-0, "
+        "baseline-misses-0), or avoid-0 for its placement both scanners read\n"
     )
 
 
@@ -235,3 +243,122 @@ def test_lasertest_plan_times_the_path_with_the_pairs_file_s_controller(
         sys.modules.pop("marking_controller", None)
     assert "size" in capsys.readouterr().out
     assert (tmp_path / "marks").read_text() == "made\n"  # the baseline's obstacle-free run
+
+
+# Placements both scanners read, which the robot must act on: the items PAIR[avoid-K].
+
+# The size pair with a candidate whose range_min (0.9 m) is the larger: near, it reads -inf.
+NEAR_PAIR = SIZE_PAIR.replace(
+    "samples: 16, range: {max: 10.0}}", "samples: 16, range: {min: 0.9, max: 10.0}}"
+)
+# A controller that drives as the default reactive one does, and stops for good once any beam
+# reads anything: it passes the obstacle-free world and fails past every placement.
+TIMID_CONTROLLER = """\
+import numpy as np
+
+from pytest_lasertest.nav.reactive import ReactiveController
+
+
+class Timid:
+    def __init__(self, robot, route):
+        self.inner = ReactiveController(robot, route)
+        self.frozen = False
+
+    def observe(self, scan, odometry, time):
+        self.frozen = self.frozen or bool(np.isfinite(scan.ranges).any())
+        return (0.0, 0.0) if self.frozen else self.inner.observe(scan, odometry, time)
+
+
+def make(robot, route):
+    return Timid(robot, route)
+"""
+
+
+def test_explain_of_an_avoid_witness_says_what_the_robot_must_do_and_what_both_scanners_read(
+    size_pairs: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["explain", str(size_pairs), "size", "avoid-0"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("size avoid-0: cylinder of radius ")
+    assert lines[1].startswith(
+        "  a placement both scanners read, which the robot must act on: it reaches "
+    )
+    assert lines[1].endswith(
+        " mm into what the robot sweeps along its path, so the robot must steer round it"
+    )
+    assert re.fullmatch(r"  anchor t = [\d.]+ s: both read it there, .*", lines[2])
+    assert re.fullmatch(
+        r"  margins detection [\d.]+ mm, clearance [\d.]+ mm, obstruction [\d.]+ mm", lines[3]
+    )
+    baseline = lines.index(next(line for line in lines if line.startswith("  baseline ")))
+    candidate = lines.index(next(line for line in lines if line.startswith("  candidate ")))
+    for heading in (lines[baseline], lines[candidate]):
+        assert " at the anchor, t = " in heading
+        assert heading.endswith(": reads it")
+    assert re.fullmatch(
+        r"    beams? \d+(-\d+)? \(angles? [-.\d]+ rad\): [\d.]+ m", lines[baseline + 1]
+    )
+    assert lines[candidate - 1].startswith("    31 of 32 beams miss")
+    assert lines[-1].startswith("    15 of 16 beams miss")
+
+
+def test_explain_json_of_an_avoid_witness_gives_both_scanners_hits_and_its_margins(
+    size_pairs: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    explanation = explained(size_pairs, "size", "avoid-0", capsys)
+    assert explanation["witness"] == "avoid-0"
+    baseline, candidate = explanation["scans"]
+    assert (baseline["scanner"], candidate["scanner"]) == ("baseline", "candidate")
+    assert baseline["time"] == candidate["time"]
+    assert baseline["hits"]
+    assert candidate["hits"]
+    assert baseline["clearance"] is None
+    margins = explanation["margins"]
+    assert margins["concealment"] == "inf"  # no scanner misses it
+    assert margins["detection"] >= 0.005
+    assert margins["obstruction"] >= 0.005
+
+
+def test_explain_of_an_avoid_witness_read_too_near_lists_the_candidate_s_minus_inf_beams(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    pairs = tmp_path / "near.lasertest.yaml"
+    pairs.write_text(NEAR_PAIR)
+    assert main(["explain", str(pairs), "size", "avoid-0"]) == 0
+    out = capsys.readouterr().out
+    assert "the candidate reads it nearer than its range_min (-inf, which a costmap drops)" in out
+    assert re.search(r", read too near [\d.]+ mm\n", out)
+    assert re.search(
+        r"\n  too near   at t = [\d.]+ s, robot at \(.*\): candidate beams [\d, ]+ read it nearer "
+        r"than range_min 0\.9 m \(-inf\), the baseline in range$",
+        out,
+    )
+
+
+def test_explain_of_an_avoid_witness_beyond_the_pair_s_items_names_them_and_exits_2(
+    size_pairs: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["explain", str(size_pairs), "size", "avoid-1"]) == 2
+    assert capsys.readouterr().err == (
+        "lasertest: pair 'size' has no witness 'avoid-1': its placement both scanners read is "
+        "avoid-0, as many as settings.witnesses asks\n"
+        "  fix: give avoid-0, or a witness `lasertest plan` prints for it\n"
+    )
+
+
+def test_explain_of_an_avoid_witness_the_baseline_fails_says_its_item_skips_and_exits_2(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "timid_controller.py").write_text(TIMID_CONTROLLER)
+    pairs = tmp_path / "timid.lasertest.yaml"
+    pairs.write_text(SIZE_PAIR.replace("pairs:", "controller: timid_controller:make\npairs:"))
+    try:
+        assert main(["explain", str(pairs), "size", "avoid-0", "--seed", "7"]) == 2
+    finally:
+        sys.modules.pop("timid_controller", None)
+    assert capsys.readouterr().err == (
+        "lasertest: pair 'size' has no witness 'avoid-0': with seed 7 the baseline robot passes "
+        "0 of its placements both scanners read, and its item size[avoid-0] is skipped\n"
+        "  fix: give a witness `lasertest plan` prints, or give the seed of the run (its "
+        "--laser-seed) with --seed\n"
+    )

@@ -21,7 +21,7 @@ from pytest_lasertest.descriptions.xmlfile import XmlElement, parse_xml
 from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.inputs.files import read_regular_file
 from tests.helpers.git import commit_everything, git
-from tests.helpers.runs import assert_one_clean_error
+from tests.helpers.runs import NO_PLACEMENTS, assert_one_clean_error
 from tests.helpers.texts import PAIRS, ROBOT
 
 XACRO_HEAD = (
@@ -370,7 +370,7 @@ def test_a_ref_reads_the_repository_that_holds_the_description_not_the_pairs_fil
     commit_everything(description.parent)
     description.write_text(ROBOT.replace("<samples>32</samples>", "<samples>16</samples>"))
     (repository / "gate.lasertest.yaml").write_text(_pairs_reading(description))
-    result = pytester.runpytest("-m", "coverage", "--laser-seed=1")
+    result = pytester.runpytest(*NO_PLACEMENTS, "--laser-seed=1")
     head = git(description.parent, "rev-parse", "--short=7", "HEAD")
     result.stdout.fnmatch_lines(
         [

@@ -3,6 +3,7 @@ JUnit XML, the controllers that drove its items."""
 
 from __future__ import annotations
 
+import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
@@ -12,8 +13,9 @@ import pytest
 
 from pytest_lasertest.inputs.errors import SpecError
 
-# Runs that test the plumbing run the coverage items alone: no solver, no simulator.
-NO_PLACEMENTS = ("-m", "coverage")
+# Runs that test the plumbing run the coverage items alone: no solver, no simulator; under the
+# candidate policy, so that a loss of coverage fails its item as any failure would.
+NO_PLACEMENTS = ("-m", "coverage", "--laser-policy=candidate")
 
 # Where --laser-artifacts=out writes the artifacts of the paper's pairs file.
 ARTIFACTS = Path("out/paper.lasertest.yaml")
@@ -81,9 +83,17 @@ def assert_spec_error(error: SpecError, file: str, case: Case) -> None:
 class JunitCase(NamedTuple):
     """One test case of a JUnit XML report."""
 
-    outcome: str  # passed, failure, error or skipped
+    outcome: str  # passed, failure, error, skipped, or xfail (a failure the policy notes)
     message: str  # the failure's or the skip's message
     properties: dict[str, str]
+
+
+def outcomes(result: pytest.RunResult) -> dict[str, int]:
+    """The counts of a run's closing line, lasertest's own outcomes included (`2 pre-existing`,
+    `1 coverage-loss`), which pytester's parseoutcomes cuts at the hyphen."""
+    closing = next(line for line in reversed(result.stdout.lines) if " in " in line)
+    counts = re.findall(r"(\d+) ([\w-]+)", closing.partition(" in ")[0])
+    return {word: int(count) for count, word in counts}
 
 
 def junit_cases(path: Path) -> dict[str, JunitCase]:
@@ -92,8 +102,11 @@ def junit_cases(path: Path) -> dict[str, JunitCase]:
     for case in ET.parse(path).iter("testcase"):
         ending = next((child for child in case if child.tag != "properties"), None)
         properties = {prop.get("name", ""): prop.get("value", "") for prop in case.iter("property")}
+        outcome = "passed" if ending is None else ending.tag
+        if ending is not None and ending.get("type") == "pytest.xfail":
+            outcome = "xfail"
         cases[f"{case.get('classname')}::{case.get('name')}"] = JunitCase(
-            ending.tag if ending is not None else "passed",
+            outcome,
             ending.get("message", "") if ending is not None else "",
             properties,
         )

@@ -1,10 +1,11 @@
-"""The policy's classes: how a trial's two runs are classified by which robots passed."""
+"""The policy's classes: how a trial's two runs are classified by which robots passed, and held
+under further draws of the scan noise; and which classes each policy fails."""
 
 from __future__ import annotations
 
 import pytest
 
-from pytest_lasertest.model.policy import classify
+from pytest_lasertest.model.policy import REDRAWS, classify, fails, noise_seed
 
 
 @pytest.mark.parametrize(
@@ -20,3 +21,44 @@ def test_a_trial_is_classified_by_which_robots_passed(
     baseline: bool, candidate: bool, expected: str
 ) -> None:
     assert classify(baseline, candidate) == expected
+
+
+def test_a_regression_that_holds_under_every_further_draw_stays_a_regression() -> None:
+    assert classify(True, False, [(True, False)] * REDRAWS) == "regression"
+
+
+@pytest.mark.parametrize(
+    "redrawn",
+    [
+        [(True, True)],  # the candidate passes under the next draw
+        [(True, False), (False, False)],  # the baseline fails under the last draw
+        [(True, False), (False, True)],
+    ],
+)
+def test_a_regression_that_some_draw_undoes_is_marginal(redrawn: list[tuple[bool, bool]]) -> None:
+    assert classify(True, False, redrawn) == "marginal"
+
+
+@pytest.mark.parametrize(
+    ("classification", "regression", "candidate"),
+    [
+        ("regression", True, True),
+        ("marginal", False, True),
+        ("pre-existing", False, True),
+        ("improvement", False, False),
+        ("unchanged", False, False),
+    ],
+)
+def test_the_regression_policy_fails_only_regressions_and_the_candidate_policy_any_failure(
+    classification: str, regression: bool, candidate: bool
+) -> None:
+    assert fails("regression", classification) is regression  # type: ignore[arg-type]
+    assert fails("candidate", classification) is candidate  # type: ignore[arg-type]
+
+
+def test_each_noise_draw_has_a_seed_of_its_own_and_the_first_is_the_runs() -> None:
+    seeds = [noise_seed(7, draw) for draw in range(REDRAWS + 1)]
+    assert seeds[0] == 7
+    assert len(set(seeds)) == len(seeds)
+    assert all(0 <= seed < 2**32 for seed in seeds)
+    assert noise_seed(8, 1) != seeds[1]

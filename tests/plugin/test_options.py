@@ -12,6 +12,7 @@ import pytest
 from pytest_lasertest.plugin import collection_args
 from pytest_lasertest.plugin.options import (
     default_profile,
+    derived_seed,
     parse_artifacts,
     parse_pairs,
     parse_policy,
@@ -58,7 +59,8 @@ def test_the_default_profile_is_ci_on_a_ci_service(environ: dict[str, str], prof
 
 def test_an_unknown_policy_names_both_policies_and_what_they_mean() -> None:
     with pytest.raises(
-        pytest.UsageError, match=r"'strict' is not a policy.*'candidate'.*'regression'"
+        pytest.UsageError,
+        match=r"'strict' is not a policy.*'regression' \(the default.*'candidate'",
     ):
         parse_policy("strict")
 
@@ -136,21 +138,32 @@ def test_a_bad_ini_pairs_path_is_a_usage_error_naming_the_ini_option(
 def test_the_header_prints_the_options_that_replay_the_run(
     pytester: pytest.Pytester, pairs_file: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.delenv("CI", raising=False)
     result = pytester.runpytest("--laser-seed=7", "--co")
     result.stdout.fnmatch_lines(
-        ["lasertest: --laser-seed=7 --laser-profile=dev --laser-policy=candidate"]
+        ["lasertest: --laser-seed=7 --laser-profile=dev --laser-policy=regression"]
     )
 
 
-def test_the_profile_defaults_to_ci_on_a_ci_service(
+def test_the_profile_defaults_to_ci_and_the_seed_to_the_pairs_file_s_own_on_a_ci_service(
     pytester: pytest.Pytester, pairs_file: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.setenv("CI", "true")
-    result = pytester.runpytest("--co", "--laser-policy=regression")
+    result = pytester.runpytest("--co", "--laser-policy=candidate")
     result.stdout.fnmatch_lines(
-        ["lasertest: --laser-seed=* --laser-profile=ci --laser-policy=regression"]
+        [
+            "lasertest: seed fixed per pairs file, from its path (on CI; --laser-seed=random "
+            "explores); --laser-profile=ci --laser-policy=candidate"
+        ]
     )
+
+
+@pytest.mark.parametrize("given", [["--laser-seed=random"], ["--laser-profile=nightly"]])
+def test_on_a_ci_service_a_random_seed_or_the_nightly_profile_still_explores(
+    pytester: pytest.Pytester, pairs_file: Path, monkeypatch: pytest.MonkeyPatch, given: list[str]
+) -> None:
+    monkeypatch.setenv("CI", "true")
+    result = pytester.runpytest("--co", *given)
+    result.stdout.fnmatch_lines(["lasertest: --laser-seed=* --laser-profile=*"])
 
 
 def test_a_random_seed_is_fresh_each_run(pytester: pytest.Pytester, pairs_file: Path) -> None:
@@ -160,6 +173,39 @@ def test_a_random_seed_is_fresh_each_run(pytester: pytest.Pytester, pairs_file: 
         return match.group(1)
 
     assert seed() != seed()
+
+
+def junit_seeds(report: Path) -> dict[str, str]:
+    """Each test case's `lasertest.seed` property in a JUnit XML report, by class and name."""
+    seeds = {}
+    for case in ET.parse(report).iter("testcase"):
+        for prop in case.iter("property"):
+            if prop.get("name") == "lasertest.seed":
+                seeds[f"{case.get('classname')}::{case.get('name')}"] = str(prop.get("value"))
+    return seeds
+
+
+def test_on_a_ci_service_each_pairs_file_s_seed_is_fixed_by_its_path_on_every_worker(
+    pytester: pytest.Pytester, pairs_file: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("CI", "true")
+    other = pytester.path / "other"
+    other.mkdir()
+    (other / "gate.lasertest.yaml").write_text(pairs_file.read_text())
+    runs = [
+        pytester.runpytest_subprocess(*options, f"--junitxml={name}.xml", *NO_PLACEMENTS)
+        for name, options in (("serial", []), ("workers", ["-n", "2"]))
+    ]
+    serial, workers = (junit_seeds(pytester.path / f"{name}.xml") for name in ("serial", "workers"))
+    # The same on every run and worker, and each file's the seed derived_seed gives its path:
+    # a commit's verdict does not change between reruns.
+    assert serial == workers
+    assert {(name.startswith("other."), seed) for name, seed in serial.items()} == {
+        (False, str(derived_seed("gate.lasertest.yaml"))),
+        (True, str(derived_seed("other/gate.lasertest.yaml"))),
+    }
+    for run in runs:
+        run.stdout.fnmatch_lines(["lasertest: seed fixed per pairs file, from its path *"])
 
 
 def test_xdist_workers_use_the_seed_the_header_prints(

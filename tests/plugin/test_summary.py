@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from tests.helpers.git import git
-from tests.helpers.runs import junit_cases
+from tests.helpers.runs import junit_cases, outcomes
 from tests.helpers.texts import PAIRS, ROBOT
 
 
@@ -25,13 +25,14 @@ def test_items_run_and_sum_up_the_same_under_xdist_as_serially(
     assert junit_cases(pytester.path / "serial.xml") == junit_cases(pytester.path / "xdist.xml")
     assert summary(serial.stdout.lines) == summary(distributed.stdout.lines)
     assert summary(serial.stdout.lines)[1].split() == [
-        # witnesses, examples, rejected, failed, by oracle, regressions, pre-existing
+        # witnesses, examples, rejected, failed, by oracle, regressions, marginal, pre-existing
         *("paper.lasertest.yaml::size", "8", "96", "0", "(0%)", "4", "2", "2", "4", "2", "2"),
     ]
     assert {
         name: case.outcome for name, case in junit_cases(pytester.path / "serial.xml").items()
     } == {
-        "paper.lasertest.yaml::size[coverage]": "failure",
+        # The 16-beam scanner scans less: noted, not failed (an expected failure in JUnit).
+        "paper.lasertest.yaml::size[coverage]": "xfail",
         "paper.lasertest.yaml::size[no-obstacle]": "passed",
         "paper.lasertest.yaml::size[avoid-0]": "passed",
         # A 0.4 m pole beside the route, which the 16-beam scanner reads with one beam: its
@@ -40,11 +41,13 @@ def test_items_run_and_sum_up_the_same_under_xdist_as_serially(
         # The baseline robot passes only two of the placements to steer round.
         "paper.lasertest.yaml::size[avoid-2]": "skipped",
         **{f"paper.lasertest.yaml::size[baseline-misses-{index}]": "passed" for index in range(2)},
-        "paper.lasertest.yaml::size[baseline-misses-2]": "failure",
+        # Both robots fail at these: pre-existing, noted.
+        "paper.lasertest.yaml::size[baseline-misses-2]": "xfail",
         "paper.lasertest.yaml::size[candidate-misses-0]": "passed",
-        "paper.lasertest.yaml::size[candidate-misses-1]": "failure",
-        # Found by perturbing the witness, which both robots pass: see the next test.
-        "paper.lasertest.yaml::size[candidate-misses-2]": "failure",
+        "paper.lasertest.yaml::size[candidate-misses-1]": "xfail",
+        # Found by perturbing the witness, which both robots pass: the 16-beam robot collides
+        # and the 32-beam robot passes, but not under every noise draw: marginal, noted.
+        "paper.lasertest.yaml::size[candidate-misses-2]": "xfail",
     }
 
 
@@ -100,7 +103,7 @@ def test_a_changed_pair_beside_an_unchanged_one_runs_and_the_run_fails_as_usual(
         PAIRS + "  narrower:\n    baseline: {urdf: robot.urdf}\n"
         "    candidate: {urdf: robot.urdf, max_angle: 1.0}\n"
     )
-    result = pytester.runpytest("-k", "coverage", "--laser-seed=1")
+    result = pytester.runpytest("-k", "coverage", "--laser-seed=1", "--laser-policy=candidate")
     result.assert_outcomes(failed=1)
     result.stdout.fnmatch_lines(["*narrower[[]coverage[]]*", "*swap: no sensing change*"])
 
@@ -112,7 +115,10 @@ def test_the_markdown_summary_is_appended_with_the_picture_of_each_failing_item(
     summary = pytester.path / "step-summary.md"
     summary.write_text("earlier step\n")
     run = ("-k", "size and baseline-misses-2", "--laser-seed=1", "--laser-examples=2")
-    result = pytester.runpytest(*run, "--laser-artifacts=out", "--laser-summary=step-summary.md")
+    policy = "--laser-policy=candidate"  # the failure is pre-existing: fail it
+    result = pytester.runpytest(
+        *run, policy, "--laser-artifacts=out", "--laser-summary=step-summary.md"
+    )
     result.assert_outcomes(failed=1)
     lines = summary.read_text().splitlines()
     assert lines[:3] == ["earlier step", "### lasertest: placements searched, per pair", ""]
@@ -120,3 +126,26 @@ def test_the_markdown_summary_is_appended_with_the_picture_of_each_failing_item(
     picture = "out/paper.lasertest.yaml/size_baseline-misses-2.png"
     assert lines[-1] == f"- `paper.lasertest.yaml::size[baseline-misses-2]`: picture `{picture}`"
     assert (pytester.path / picture).is_file()
+
+
+def test_a_noted_failure_is_listed_in_the_job_summary_and_its_picture_is_drawn(
+    pytester: pytest.Pytester, paper: Path
+) -> None:
+    summary = pytester.path / "step-summary.md"
+    run = ("-k", "size and baseline-misses-2", "--laser-seed=1", "--laser-examples=2")
+    result = pytester.runpytest(*run, "--laser-artifacts=out", "--laser-summary=step-summary.md")
+    assert result.ret == pytest.ExitCode.OK
+    assert outcomes(result) == {"deselected": 32, "pre-existing": 1}
+    result.stdout.fnmatch_lines(
+        [
+            "*= lasertest: failures that do not fail the run (--laser-policy=candidate fails *",
+            "PRE-EXISTING  paper.lasertest.yaml::size[[]baseline-misses-2[]]: the candidate fails * "
+            "near witness baseline-misses-2: pre-existing: the baseline fails here too",
+        ]
+    )
+    assert summary.read_text().splitlines()[-1] == (
+        "- pre-existing: `paper.lasertest.yaml::size[baseline-misses-2]`: the candidate fails "
+        "(stuck and goal) near witness baseline-misses-2: pre-existing: the baseline fails here too"
+    )
+    # Its artifacts are written as a failure's are.
+    assert (pytester.path / "out/paper.lasertest.yaml/size_baseline-misses-2.png").is_file()

@@ -26,7 +26,7 @@ def test_the_summary_sums_each_pairs_placement_items_and_ignores_other_items() -
     summary.add(
         "paper.lasertest.yaml::size[baseline-misses-0]",
         True,
-        searched(1, 0, failed_oracles="stuck,goal", pre_existing=1),
+        searched(1, 0, failed_oracles="stuck,goal", pre_existing=1, marginal=1),
     )
     # Under the regression policy a pre-existing failure passes, and is still counted.
     summary.add(
@@ -47,10 +47,11 @@ def test_the_summary_sums_each_pairs_placement_items_and_ignores_other_items() -
         "0",
         "0",
         "0",
+        "0",
     ]
     assert size == [
         *("paper.lasertest.yaml::size", "4", "16", "1", "(6%)", "2"),
-        *("1", "1", "2", "1", "2"),
+        *("1", "1", "2", "1", "1", "2"),
     ]
 
 
@@ -76,7 +77,7 @@ def test_the_markdown_table_has_a_row_per_pair_and_lists_each_failure_with_its_p
     pictures = {"a.lasertest.yaml::p[candidate-misses-0]": "out/a.lasertest.yaml/p_c-0.png"}
     lines = summary.markdown(pictures).splitlines()
     assert lines[2].split(" | ")[:3] == ["| pair", "witnesses", "examples"]
-    assert lines[3] == "| --- |" + " ---: |" * 9  # the pair, then nine counts
+    assert lines[3] == "| --- |" + " ---: |" * 10  # the pair, then ten counts
     assert lines[4].startswith("| a.lasertest.yaml::p | 2 | 5 | 1 (17%) | 2 |")
     # A pipe in a pair's name would end its cell.
     assert lines[5].startswith("| b.lasertest.yaml::q\\|r | 1 | 5 |")
@@ -90,3 +91,23 @@ def test_a_run_without_placement_items_has_no_markdown_table() -> None:
     summary = Summary()
     summary.add("a.lasertest.yaml::p[coverage]", True, [])
     assert summary.markdown({}) == ""
+
+
+def test_failures_that_do_not_fail_the_run_are_listed_by_category_with_their_headlines() -> None:
+    summary = Summary()
+    summary.note("b.lasertest.yaml::q[coverage]", "coverage-loss", "the candidate scans less")
+    summary.note("a.lasertest.yaml::p[avoid-0]", "pre-existing", "both robots fail")
+    summary.note("a.lasertest.yaml::p[avoid-1]", "marginal", "a noise draw undid it")
+    assert summary.noted_lines() == [
+        "COVERAGE-LOSS  b.lasertest.yaml::q[coverage]: the candidate scans less",
+        "MARGINAL       a.lasertest.yaml::p[avoid-1]: a noise draw undid it",
+        "PRE-EXISTING   a.lasertest.yaml::p[avoid-0]: both robots fail",
+    ]
+    # The job summary lists them too, without a table where no placement item searched.
+    lines = summary.markdown({}).splitlines()
+    assert lines[-3:] == [
+        "- pre-existing: `a.lasertest.yaml::p[avoid-0]`: both robots fail",
+        "- marginal: `a.lasertest.yaml::p[avoid-1]`: a noise draw undid it",
+        "- coverage-loss: `b.lasertest.yaml::q[coverage]`: the candidate scans less",
+    ]
+    assert not any(line.startswith("| pair") for line in lines)

@@ -1,7 +1,10 @@
 """What every item of a pair shares: its pairs file and pair, its markers, the run's session and
 options, a report location at the pair's line, and how its failures are shown.
 
-An item fails by raising `ItemFailure` with its whole report, written by `reports/`. A
+An item fails by raising `ItemFailure` with its whole report, written by `reports/`. A failure
+the run's policy does not fail the run on (pre-existing, marginal, a loss of coverage, under the
+default `regression` policy) is raised as a `NotedFailure`, which the entry point reports as an
+expected failure of its own category (`LaserSession.pytest_report_teststatus`). A
 controller that breaks a drive (`ControllerError`: it raised, hung, or answered no command) fails
 the item with a short report naming it and what it did; `--fulltrace` shows the traceback
 instead. Any other exception is a bug in the plugin, and pytest shows its traceback.
@@ -10,16 +13,17 @@ instead. Any other exception is a bug in the plugin, and pytest shows its traceb
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import pytest
 
+from pytest_lasertest.model.policy import Classification, fails
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.plugin.options import LaserOptions
 from pytest_lasertest.plugin.session import LaserSession
 from pytest_lasertest.reports.drive import controller_error_report
-from pytest_lasertest.reports.formats import Replay
+from pytest_lasertest.reports.formats import Artifacts, Replay
 from pytest_lasertest.sim.scenario import ControllerError
 
 if TYPE_CHECKING:
@@ -34,6 +38,23 @@ class ItemFailure(Exception):
         super().__init__(report.partition("\n")[0])
         self.report = report
         self.artifacts = artifacts
+
+
+# The failures that fail the run only under the `candidate` policy: each its own outcome.
+Noted = Literal["pre-existing", "marginal", "coverage-loss"]
+
+
+_NOTED: dict[Classification, Noted] = {"pre-existing": "pre-existing", "marginal": "marginal"}
+
+
+class NotedFailure(ItemFailure):
+    """A failure in plain sight that does not fail the run under the run's policy: reported as
+    an expected failure (pytest's xfail: JUnit's `skipped type="pytest.xfail"`) of its own
+    category, with its report kept for the run's summary."""
+
+    def __init__(self, category: Noted, report: str, artifacts: tuple[Path, ...] = ()) -> None:
+        super().__init__(report, artifacts)
+        self.category: Noted = category
 
 
 class PairItem(pytest.Item):
@@ -62,8 +83,32 @@ class PairItem(pytest.Item):
         """How to run this item again, as this run ran it, from where pytest was started."""
         return self.options.replay(self.nodeid, self.path, self.config.invocation_params.dir)
 
+    @property
+    def seed(self) -> int:
+        """The scan noise's and the search's seed for this item's pairs file."""
+        return self.options.seed_of(self.path)
+
+    def failure(
+        self, found: Classification | Literal["coverage-loss"], report: str, artifacts: Artifacts
+    ) -> ItemFailure:
+        """The exception to fail with for what the item `found`: a plain `ItemFailure` where the
+        run's policy fails the run on it, else a `NotedFailure` of its category."""
+        policy = self.options.policy
+        if found == "coverage-loss":
+            return (
+                ItemFailure(report, artifacts.written)
+                if policy == "candidate"
+                else NotedFailure("coverage-loss", report, artifacts.written)
+            )
+        category = _NOTED.get(found)
+        if fails(policy, found) or category is None:
+            return ItemFailure(report, artifacts.written)
+        return NotedFailure(category, report, artifacts.written)
+
     def reportinfo(self) -> tuple[Path, int, str]:
-        return self.path, self.pair.location.line - 1, self.name
+        # The domain heads the failure's section: the node id, so that two files' `size[coverage]`
+        # are told apart there.
+        return self.path, self.pair.location.line - 1, self.nodeid
 
     def repr_failure(
         self, excinfo: pytest.ExceptionInfo[BaseException], style: TracebackStyle | None = None

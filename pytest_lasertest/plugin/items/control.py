@@ -9,9 +9,10 @@ from __future__ import annotations
 
 from typing import Any
 
+from pytest_lasertest.model.policy import CANDIDATE_FAILED
 from pytest_lasertest.pairsfile import Pair
 from pytest_lasertest.pairsfile.controller import ControllerChoice
-from pytest_lasertest.plugin.items.base import ItemFailure, PairItem
+from pytest_lasertest.plugin.items.base import PairItem
 from pytest_lasertest.reports.drive import drive_properties, drive_report
 from pytest_lasertest.reports.formats import Artifacts
 from pytest_lasertest.search.drives import PairDrive
@@ -36,25 +37,24 @@ class ControlItem(PairItem):
     def runtest(self) -> None:
         drives = self.lasertest.control_drive(self.spec, self.pair, self.controller)
         self.user_properties += [
-            ("lasertest.seed", self.options.seed),
+            ("lasertest.seed", self.seed),
             ("lasertest.controller", self.controller.name),
             *drive_properties(drives),
         ]
-        if drives.fails(self.options.policy):
+        found = drives.classification
+        if found in CANDIDATE_FAILED:
             written = self._write(drives)
             headline, details = _verdict(drives)
-            raise ItemFailure(
-                drive_report(
-                    headline,
-                    self.pair,
-                    self.controller,
-                    drives,
-                    [*details, *written.lines("artifact", self.replay.here)],
-                    self.options.policy,
-                    self.replay,
-                ),
-                written.written,
+            report = drive_report(
+                headline,
+                self.pair,
+                self.controller,
+                drives,
+                [*details, *written.lines("artifact", self.replay.here)],
+                self.options.policy,
+                self.replay,
             )
+            raise self.failure(found, report, written)
 
     def _write(self, drives: PairDrive) -> Artifacts:
         """The failure's picture, empty Gazebo world and numbers, if the run asked for them."""
@@ -69,7 +69,7 @@ class ControlItem(PairItem):
             self.spec,
             self.pair,
             drives,
-            options.recorded(),
+            options.recorded(self.path),
             self.controller,
         )
 
@@ -78,6 +78,12 @@ def _verdict(drives: PairDrive) -> tuple[str, list[str]]:
     """The headline of a failing control item, and a fix when the baseline fails as well: then
     the world, its time limit or the controller is at fault, not the scanner change."""
     baseline = drives.baseline
+    if drives.classification == "marginal":
+        return (
+            "marginal: the candidate fails without any obstacle and the baseline passes, but "
+            "not under every draw of the scan noise: the change is not shown to break the robot",
+            [],
+        )
     if baseline.passed:
         return (
             "the candidate fails without any obstacle: the change breaks the robot everywhere, "

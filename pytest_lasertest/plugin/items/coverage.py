@@ -4,7 +4,7 @@ baseline scanned, on the same robot (`model/coverage.py`)."""
 from __future__ import annotations
 
 from pytest_lasertest.model.coverage import CoverageComparison, compare_coverage
-from pytest_lasertest.plugin.items.base import ItemFailure, PairItem
+from pytest_lasertest.plugin.items.base import PairItem
 from pytest_lasertest.reports.coverage import coverage_properties, coverage_report
 from pytest_lasertest.reports.formats import Artifacts
 
@@ -22,13 +22,13 @@ class CoverageItem(PairItem):
             max_speed=self.spec.robot.max_linear_velocity,
         )
         self.user_properties += [
-            ("lasertest.seed", self.options.seed),
+            ("lasertest.seed", self.seed),
             *coverage_properties(comparison),
         ]
         if comparison.losses:
             artifact = self._write_evidence(comparison)
             report = coverage_report(self.pair, comparison, self.replay, artifact)
-            raise ItemFailure(report, artifact.written)
+            raise self.failure("coverage-loss", report, artifact)
 
     def _write_evidence(self, comparison: CoverageComparison) -> Artifacts:
         """The numbers of the loss, if the run asked for artifacts."""
@@ -37,6 +37,6 @@ class CoverageItem(PairItem):
             return Artifacts()
         from pytest_lasertest.artifacts.evidence import evidence_header, write_coverage_evidence
 
-        header = evidence_header(self.nodeid, self.spec, self.pair, options.recorded())
+        header = evidence_header(self.nodeid, self.spec, self.pair, options.recorded(self.path))
         scanners = (self.pair.baseline, self.pair.candidate)
         return write_coverage_evidence(options.artifacts, self.nodeid, scanners, comparison, header)

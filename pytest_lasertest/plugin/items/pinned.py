@@ -13,13 +13,14 @@ from typing import Any
 
 import pytest
 
-from pytest_lasertest.model.policy import classify
+from pytest_lasertest.model.policy import CANDIDATE_FAILED
 from pytest_lasertest.model.verify import DETECTED_BY
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.pairsfile.placements import PinnedPlacement
-from pytest_lasertest.plugin.items.base import ItemFailure, PairItem
+from pytest_lasertest.plugin.items.base import PairItem
 from pytest_lasertest.reports.drive import MEANINGS, drive_properties, drive_report
+from pytest_lasertest.reports.formats import Artifacts
 from pytest_lasertest.search.drives import drive_pair
 
 
@@ -41,7 +42,7 @@ class PinnedItem(PairItem):
         drives = drive_pair(
             self.spec, self.pair, (pinned.obstacle,), pinned.seed, self.controller, client, cache
         )
-        classification = classify(drives.baseline.passed, drives.candidate.passed)
+        classification = drives.classification
         self.user_properties += [
             ("lasertest.seed", pinned.seed),
             ("lasertest.controller", self.controller.name),
@@ -49,19 +50,18 @@ class PinnedItem(PairItem):
             ("lasertest.classification", classification),
             *drive_properties(drives),
         ]
-        if drives.fails(self.options.policy):
-            raise ItemFailure(
-                drive_report(
-                    f"the candidate fails at the pinned placement {self.name}: "
-                    f"{MEANINGS[classification]}",
-                    self.pair,
-                    self.controller,
-                    drives,
-                    self._details(),
-                    self.options.policy,
-                    self.replay,
-                )
+        if classification in CANDIDATE_FAILED:
+            report = drive_report(
+                f"the candidate fails at the pinned placement {self.name}: "
+                f"{MEANINGS[classification]}",
+                self.pair,
+                self.controller,
+                drives,
+                self._details(),
+                self.options.policy,
+                self.replay,
             )
+            raise self.failure(classification, report, Artifacts())
 
     def _details(self) -> list[str]:
         pinned = self.pinned
@@ -72,7 +72,7 @@ class PinnedItem(PairItem):
         return lines
 
     def reportinfo(self) -> tuple[Path, int, str]:
-        return self.path, self.pinned.location.line - 1, self.name
+        return self.path, self.pinned.location.line - 1, self.nodeid
 
 
 def pinned_items(

@@ -36,7 +36,7 @@ from pytest_lasertest.reports.failure import (
 from pytest_lasertest.reports.formats import Artifacts
 from pytest_lasertest.search.blame import blame_driver
 from pytest_lasertest.search.offsets import OffsetBox
-from pytest_lasertest.search.trials import TrialFailed, Trials
+from pytest_lasertest.search.trials import TrialResult, Trials, noted_result
 from pytest_lasertest.search.witness import search_witness
 
 
@@ -57,7 +57,7 @@ class SearchItem(PairItem):
         scene, witness = self._witness()
         verification = verify(scene, witness.placement)
         self.user_properties += [
-            ("lasertest.seed", self.options.seed),
+            ("lasertest.seed", self.seed),
             *witness_properties(witness, verification),
         ]
         if not verification.holds():
@@ -97,35 +97,49 @@ class SearchItem(PairItem):
             *search_properties(found.box, found.trials),
         ]
         if found.failure is not None:
-            self._fail(witness, found.failure, found.trials, found.box)
+            failed = found.failure
+            notes = tuple(str(note) for note in getattr(failed, "__notes__", ()))
+            self._fail(witness, failed.result, found.trials, found.box, notes)
+        noted = noted_result(found.trials)
+        if noted is not None:
+            self._fail(witness, noted, found.trials, found.box, ())
 
-    def _fail(self, witness: Witness, failed: TrialFailed, trials: Trials, box: OffsetBox) -> None:
-        """Record the minimal failure, write its artifacts, and fail the item with it."""
-        self.user_properties += failure_properties(failed.result)
+    def _fail(
+        self,
+        witness: Witness,
+        result: TrialResult,
+        trials: Trials,
+        box: OffsetBox,
+        notes: tuple[str, ...],
+    ) -> None:
+        """Record the failure (the minimal one the policy fails, or one it notes), write its
+        artifacts, and fail the item with it."""
+        self.user_properties += failure_properties(result)
         failure = PlacementFailure(
             self.nodeid,
             self.spec,
             self.pair,
             self.controller,
             witness,
-            failed.result,
+            result,
             trials,
             box,
-            tuple(str(note) for note in getattr(failed, "__notes__", ())),
-            self.options.seed,
-            self.options.recorded(),
+            notes,
+            self.seed,
+            self.options.recorded(self.path),
             # Hypothesis drops what it cannot save without a word: say so, or the rerun misleads.
             unwritable(self._database()),
             # Only a regression is the change's doing, and only then may a trait be to blame.
             blame_driver(
                 self.lasertest.setting(self.spec, self.pair, self.controller),
-                failed.result.placement,
+                result.placement,
             )
-            if failed.result.classification == "regression"
+            if result.classification == "regression"
             else (),
         )
         artifacts = self._write_failure(failure)
-        raise ItemFailure(failure_report(failure, self.replay, artifacts), artifacts.written)
+        report = failure_report(failure, self.replay, artifacts)
+        raise self.failure(result.classification, report, artifacts)
 
     def _reject(self, witness: Witness, verification: Verification) -> None:
         """Fail the item with the witness the solver should not have returned."""
@@ -137,7 +151,7 @@ class SearchItem(PairItem):
                 write_rejection_evidence,
             )
 
-            header = evidence_header(self.nodeid, self.spec, self.pair, options.recorded())
+            header = evidence_header(self.nodeid, self.spec, self.pair, options.recorded(self.path))
             artifacts = write_rejection_evidence(
                 options.artifacts, self.nodeid, witness, verification, header
             )
@@ -150,7 +164,7 @@ class SearchItem(PairItem):
 
     def _seed(self) -> int:
         """The search's seed: the run's, made the item's own by its node id."""
-        digest = hashlib.sha256(f"{self.options.seed}:{self.nodeid}".encode()).digest()
+        digest = hashlib.sha256(f"{self.seed}:{self.nodeid}".encode()).digest()
         return int.from_bytes(digest[:4], "big")
 
     def _write_failure(self, failure: PlacementFailure) -> Artifacts:

@@ -1,0 +1,140 @@
+"""A regression survives the noise (`search/drives.py`): where the candidate alone fails, both
+robots drive again under further, independent draws of the scan noise, and the failure is a
+regression only if it holds under every one; else it is marginal."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+from types import SimpleNamespace
+from typing import Any
+
+import pytest
+
+from pytest_lasertest.model.policy import REDRAWS, noise_seed
+from pytest_lasertest.pairsfile import load_pairs_file
+from pytest_lasertest.pairsfile.controller import ControllerChoice
+from pytest_lasertest.search import drives
+from pytest_lasertest.search.drives import RunCache, drive_pair
+from pytest_lasertest.sim.oracles import Collision, Goal, Stuck, Verdicts
+from pytest_lasertest.sim.scenario import Scenario
+from tests.helpers import EXAMPLES
+
+SPEC = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+PAIR = next(pair for pair in SPEC.pairs if pair.name == "size")
+CHOICE = ControllerChoice("stand-in", "tests/search/test_redrives.py", lambda robot, route: None)
+SEED = 5
+# Whether a side passes under a draw: draw number -> (baseline passes, candidate passes).
+Outcomes = dict[int, tuple[bool, bool]]
+
+
+def stand_in(world: Scenario, passed: bool, clearance: float = 0.3) -> Any:
+    """A run that passes, with `clearance` (m) to spare, or collides."""
+    verdicts = Verdicts(
+        Collision(None if passed else 12.0, clearance if passed else -0.001),
+        Stuck(None, float("inf"), 0.1, 10.0),
+        Goal(20.0 if passed else None, 0.1 if passed else 4.0, 0.2),
+    )
+    return SimpleNamespace(passed=passed, scenario=world, verdicts=verdicts)
+
+
+def simulate(monkeypatch: pytest.MonkeyPatch, outcomes: Outcomes) -> list[Scenario]:
+    """Answer every scenario with a stand-in run that passes as `outcomes` say for its draw."""
+    draws = {noise_seed(SEED, draw): draw for draw in range(REDRAWS + 1)}
+    simulated: list[Scenario] = []
+
+    def run_scenario(world: Scenario, factory: Callable[..., Any], client: object) -> Any:
+        simulated.append(world)
+        baseline, candidate = outcomes[draws[world.seed]]
+        is_candidate = world.profile == PAIR.candidate.profile
+        return stand_in(world, candidate if is_candidate else baseline)
+
+    monkeypatch.setattr(drives, "run_scenario", run_scenario)
+    return simulated
+
+
+def test_a_failure_of_the_candidate_alone_that_holds_under_every_draw_is_a_regression(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    simulated = simulate(monkeypatch, dict.fromkeys(range(REDRAWS + 1), (True, False)))
+    drive = drive_pair(SPEC, PAIR, (), SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
+    assert drive.classification == "regression"
+    assert len(drive.redrives) == REDRAWS
+    assert drive.simulations == len(simulated) == 2 * (REDRAWS + 1)
+    # Each draw drives both robots with the same noise seed, none the run's own.
+    assert [again.candidate.scenario.seed for again in drive.redrives] == [
+        noise_seed(SEED, draw) for draw in range(1, REDRAWS + 1)
+    ]
+
+
+@pytest.mark.parametrize(
+    ("undone", "redrives"),
+    [((True, True), 1), ((False, False), 1)],
+    ids=["the candidate passes under the first redraw", "the baseline fails under it"],
+)
+def test_a_failure_a_redraw_undoes_is_marginal_and_stops_redriving(
+    monkeypatch: pytest.MonkeyPatch, undone: tuple[bool, bool], redrives: int
+) -> None:
+    outcomes = {0: (True, False), 1: undone, 2: (True, False)}
+    simulate(monkeypatch, outcomes)
+    drive = drive_pair(SPEC, PAIR, (), SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
+    assert drive.classification == "marginal"
+    assert len(drive.redrives) == redrives
+    assert drive.fails("candidate")
+    assert not drive.fails("regression")
+
+
+@pytest.mark.parametrize(
+    ("first", "expected"),
+    [((True, True), "unchanged"), ((False, False), "pre-existing"), ((False, True), "improvement")],
+)
+def test_only_a_failure_of_the_candidate_alone_is_driven_again(
+    monkeypatch: pytest.MonkeyPatch, first: tuple[bool, bool], expected: str
+) -> None:
+    simulated = simulate(monkeypatch, {0: first})
+    drive = drive_pair(SPEC, PAIR, (), SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
+    assert drive.classification == expected
+    assert drive.redrives == ()
+    assert len(simulated) == 2
+
+
+def test_scanners_without_noise_are_not_driven_again(monkeypatch: pytest.MonkeyPatch) -> None:
+    quiet = dataclasses.replace(
+        PAIR,
+        baseline=dataclasses.replace(
+            PAIR.baseline, profile=dataclasses.replace(PAIR.baseline.profile, noise=None)
+        ),
+        candidate=dataclasses.replace(
+            PAIR.candidate, profile=dataclasses.replace(PAIR.candidate.profile, noise=None)
+        ),
+    )
+    draws = {0: (True, False)}
+    simulated: list[Scenario] = []
+
+    def run_scenario(world: Scenario, factory: object, client: object) -> Any:
+        simulated.append(world)
+        return stand_in(world, draws[0][world.profile == quiet.candidate.profile])
+
+    monkeypatch.setattr(drives, "run_scenario", run_scenario)
+    drive = drive_pair(SPEC, quiet, (), SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
+    # Every draw would drive alike: the one drive decides.
+    assert drive.classification == "regression"
+    assert len(simulated) == 2
+
+
+def test_a_baseline_that_passes_by_less_than_a_centimetre_makes_the_failure_marginal(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    simulated: list[Scenario] = []
+
+    def run_scenario(world: Scenario, factory: object, client: object) -> Any:
+        simulated.append(world)
+        # The baseline grazes the obstacle with 4 mm to spare; the candidate touches it.
+        return stand_in(world, world.profile != PAIR.candidate.profile, clearance=0.004)
+
+    monkeypatch.setattr(drives, "run_scenario", run_scenario)
+    drive = drive_pair(SPEC, PAIR, (), SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
+    assert drive.classification == "marginal"
+    # A near miss is marginal whatever further draws do: none is driven.
+    assert len(simulated) == 2
+    assert drives.near_misses(drive.baseline, drive.candidate) == [("collision", 0.004)]
