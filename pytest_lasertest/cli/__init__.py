@@ -29,7 +29,7 @@ from pytest_lasertest.cli.errors import (
 )
 from pytest_lasertest.descriptions.gitref import GitError
 from pytest_lasertest.inputs.errors import SpecError
-from pytest_lasertest.pairsfile.placements import MAX_SEED  # the seeds --laser-seed takes
+from pytest_lasertest.model.seeds import MAX_SEED, whole_seed
 
 PAIRS = "robots/husky/gate.lasertest.yaml"  # the pairs file the fixes' examples name
 
@@ -187,11 +187,8 @@ def add_profile_parser(commands: Any) -> None:
 
 def parse_seed(text: str) -> int:
     """A seed as `--laser-seed` takes one: a whole number from 0 to MAX_SEED."""
-    try:
-        seed = int(text, 10)
-    except ValueError:
-        seed = -1
-    if not 0 <= seed <= MAX_SEED:
+    seed = whole_seed(text)
+    if seed is None:
         raise argparse.ArgumentTypeError(
             f"{text!r} is not a seed: give a whole number from 0 to {MAX_SEED}, as the run's "
             "report header prints it (lasertest: --laser-seed=N ...)"

@@ -14,7 +14,6 @@ pre-existing ones included.
 
 from __future__ import annotations
 
-import hashlib
 from collections.abc import Iterable
 from typing import Literal, get_args
 
@@ -62,12 +61,3 @@ def fails(policy: Policy, classification: Classification) -> bool:
     if policy == "regression":
         return classification == "regression"
     return classification in CANDIDATE_FAILED
-
-
-def noise_seed(seed: int, draw: int) -> int:
-    """The scan-noise seed of draw `draw` of a run seeded `seed`: draw 0 is the run's own, and
-    each further one is independent of it and of the others."""
-    if draw == 0:
-        return seed
-    digest = hashlib.sha256(f"lasertest-redraw:{seed}:{draw}".encode()).digest()
-    return int.from_bytes(digest[:4], "big")

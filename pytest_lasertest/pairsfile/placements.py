@@ -21,6 +21,9 @@ from dataclasses import dataclass
 from pytest_lasertest.inputs.errors import Location
 from pytest_lasertest.inputs.node import Bounds, SpecNode
 from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
+
+# The range --laser-seed accepts, so that any recorded run's seed can be pinned.
+from pytest_lasertest.model.seeds import MAX_SEED
 from pytest_lasertest.model.verify import DIRECTIONS, Direction
 from pytest_lasertest.pairsfile.world import COORDINATE, YAW
 
@@ -39,8 +42,6 @@ SHAPE_HINTS = {
         "width": "`width` belongs to a box; write radius, or shape: box",
     },
 }
-# The range --laser-seed accepts, so that any recorded run's seed can be pinned.
-MAX_SEED = 2**32 - 1
 # Each placement is a test item that drives both robots: a recorded failure is one of a few.
 MAX_PLACEMENTS = 1000
 # The gate's obstacles are at most settings.max_obstacle_size (10 m) wide, and stand on the

@@ -13,12 +13,12 @@ from typing import TYPE_CHECKING
 import pytest
 
 from pytest_lasertest.model.policy import POLICIES, Policy
+from pytest_lasertest.model.seeds import MAX_SEED, whole_seed
 from pytest_lasertest.search.budgets import BUDGET_NAMES, BUDGETS, MAX_EXAMPLES, Budget, BudgetName
 
 if TYPE_CHECKING:
     from pytest_lasertest.reports.formats import Replay
 
-MAX_SEED = 2**32 - 1
 PAIRS_SUFFIXES = (".lasertest.yaml", ".lasertest.yml")
 
 
@@ -108,11 +108,8 @@ def parse_seed(text: str) -> int | None:
     """An explicit seed, or None for 'random' (a fresh seed per run)."""
     if text == "random":
         return None
-    try:
-        seed = int(text, 10)
-    except ValueError:
-        seed = -1
-    if not 0 <= seed <= MAX_SEED:
+    seed = whole_seed(text)
+    if seed is None:
         raise pytest.UsageError(
             f"--laser-seed={text!r} is not a seed: give a whole number from 0 to {MAX_SEED}, "
             "or 'random' for a fresh one (the report header prints it for replay)"

@@ -223,10 +223,31 @@ class LaserSession:
                 terminalreporter.section(title)
                 for line in lines:
                     terminalreporter.write_line(line)
+        if terminalreporter.hasopt("x"):
+            self._noted_reports(terminalreporter)
         if self.options.summary is not None:
             problem = self._append_summary(self.options.summary)
             if problem is not None:
                 terminalreporter.write_line(f"lasertest: --laser-summary: {problem}", red=True)
+
+    def _noted_reports(self, terminalreporter: pytest.TerminalReporter) -> None:
+        """Under `-rx` (or `-rA`), where pytest would list its expected failures, the whole
+        report of each failure the policy noted, headed like a failure's."""
+        reports = [
+            report
+            for category in NOTED_LETTERS
+            for report in terminalreporter.stats.get(category, [])
+            if isinstance(report, pytest.TestReport)
+        ]
+        if not reports:
+            return
+        terminalreporter.section(f"lasertest: reports of the {NOTED_SECTION}")
+        # In the order of the one-line list above: by category, then node id.
+        for report in sorted(
+            reports, key=lambda report: (report.lasertest_category, report.nodeid)
+        ):
+            terminalreporter.write_sep("_", f"{report.head_line or report.nodeid}")
+            terminalreporter.write_line(report.longreprtext)
 
     def _append_summary(self, path: Path) -> str | None:
         """Append the Markdown table to `path`; why it could not be, if it could not."""

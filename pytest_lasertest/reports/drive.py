@@ -18,8 +18,7 @@ from pytest_lasertest.sim.scenario import ControllerError, Run
 
 # What each class of failure means for the change.
 MEANINGS: dict[Classification, str] = {
-    "regression": "a regression: the baseline passes where the candidate fails, under every "
-    "draw of the scan noise",
+    "regression": "a regression: the baseline passes where the candidate fails",
     "marginal": "marginal: the candidate fails where the baseline passes, but not under every "
     "draw of the scan noise",
     "pre-existing": "pre-existing: the baseline fails here too",

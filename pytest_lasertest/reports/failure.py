@@ -103,7 +103,7 @@ def failure_report(failure: PlacementFailure, replay: Replay, artifacts: Artifac
         *(f"  hypothesis {note}" for note in failure.notes),
         f"  policy     {trials.policy}",
         f"  seed       {failure.seed}",
-        *_replay_lines(replay, artifacts, failure.unstored),
+        *_replay_lines(replay, artifacts, _stored(failure)),
     ]
     return "\n".join(lines)
 
@@ -115,14 +115,21 @@ def _which_change(result: TrialResult, trials: Trials) -> str:
     return f"the first the search found; the {trials.policy} policy does not fail the run on it"
 
 
-def _replay_lines(replay: Replay, artifacts: Artifacts, unstored: str | None) -> list[str]:
+def _stored(failure: PlacementFailure) -> str:
+    """What a rerun of the item does: replay the failure from the example database, where the
+    search failed on it and could store it; else search again, as this run did."""
+    if not failure.result.fails(failure.trials.policy):
+        return "(searches again as this run did: the same seed tries the same examples)"
+    if failure.unstored is not None:
+        return (
+            f"(searches afresh: the example database cannot keep this case, as {failure.unstored})"
+        )
+    return "(replays this case first, from .hypothesis/)"
+
+
+def _replay_lines(replay: Replay, artifacts: Artifacts, stored: str) -> list[str]:
     """How to run the case again: the item, and the pinned repro if one was written; then where
     the artifacts are, and any that could not be written."""
-    stored = (
-        "(replays this case first, from .hypothesis/)"
-        if unstored is None
-        else f"(searches afresh: the example database cannot keep this case, as {unstored})"
-    )
     repro = [path for path in artifacts.written if path.name.endswith(REPRO_SUFFIX)]
     lines = artifacts.lines("artifact", replay.here)
     if not repro:
@@ -229,7 +236,8 @@ def search_line(trials: Trials, box: OffsetBox) -> str:
         f"the first failure at simulation {trials.simulations_to_failure}, then "
         f"{trials.shrink_simulations} more to classify and shrink it"
         if trials.simulations_to_failure is not None
-        else "no failure"
+        # The search looks for what the policy fails: under `regression`, regressions only.
+        else f"no {'regression' if trials.policy == 'regression' else 'failure'}"
     )
     return (
         f"  search     {trials.examples} examples, {trials.rejected} rejected "

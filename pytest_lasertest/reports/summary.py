@@ -143,9 +143,8 @@ class Summary:
             )
             for row in rows
         ]
-        failed = sum(tally.failed for tally in self.pairs.values())
-        if artifacts is not None and failed:
-            lines.append(f"artifacts of the {failed} failing placement items: {artifacts}")
+        if artifacts is not None and (self.failing or self.noted):
+            lines.append(f"artifacts of the failures above and below: {artifacts}")
         return lines
 
 

@@ -24,8 +24,8 @@ from pytest_lasertest.model.policy import (
     Policy,
     classify,
     fails,
-    noise_seed,
 )
+from pytest_lasertest.model.seeds import noise_seed
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.pairsfile import Pair, PairsFile

@@ -152,3 +152,16 @@ def test_a_kill_counts_only_if_a_second_draw_of_the_scan_noise_repeats_it(
     assert cell.seed not in seeds
     assert len(drives) == 4  # the check without the fault, then the three again
     assert not fault_finding.Search.kills(search(False), (), failed, passed)
+
+
+def test_the_verdicts_benchmark_compares_each_item_across_seeds() -> None:
+    harmless = "tests/data/harmless/move_base.lasertest.yaml"
+    lines = printed(
+        "benchmarks/verdicts.py", harmless, "--seeds", "0,1", "--workers", "1", "-k", "coverage"
+    )
+    # The harmless changes' coverage items: none loses coverage, under either seed.
+    assert lines == [
+        f"{harmless}: 3 items; 0 change with the seed; failed under every seed: none; "
+        "under some: none",
+        "seed-dependent items: 0 of 3; failing items: 0 (under every seed: 0)",
+    ]

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import pytest
 
-from pytest_lasertest.model.policy import REDRAWS, classify, fails, noise_seed
+from pytest_lasertest.model.policy import REDRAWS, classify, fails
+from pytest_lasertest.model.seeds import noise_seed
 
 
 @pytest.mark.parametrize(

@@ -19,7 +19,7 @@ def test_a_pair_read_from_one_description_at_two_revisions_compares_them(
 ) -> None:
     robot = repository / "robot.urdf"
     robot.write_text(ROBOT.replace("<samples>32</samples>", "<samples>16</samples>"))
-    result = pytester.runpytest("-k", "coverage", "--laser-seed=1")
+    result = pytester.runpytest("-k", "coverage", "--laser-seed=1", "--laser-policy=candidate")
     result.assert_outcomes(failed=1)
     head = git(repository, "rev-parse", "--short=7", "HEAD")
     result.stdout.fnmatch_lines(

@@ -795,7 +795,7 @@ def test_a_control_run_the_baseline_fails_too_blames_the_world_not_the_scanner_c
     (pytester.path / "gate.lasertest.yaml").write_text(
         GATE.replace("time_limit: 60.0", "time_limit: 6.0")
     )
-    result = pytester.runpytest("-k", "no-obstacle")
+    result = pytester.runpytest("-k", "no-obstacle", "--laser-policy=candidate")
     result.assert_outcomes(failed=1)
     result.stdout.fnmatch_lines(
         [
@@ -812,7 +812,10 @@ def test_a_placement_item_of_a_slow_robot_drives_its_witness_instead_of_raising(
     pytester: pytest.Pytester,
 ) -> None:
     (pytester.path / "gate.lasertest.yaml").write_text(SLOW)
-    result = pytester.runpytest("-k", "candidate-misses-0", "--laser-profile=dev", "--laser-seed=1")
+    result = pytester.runpytest(
+        *("-k", "candidate-misses-0", "--laser-profile=dev", "--laser-seed=1"),
+        "--laser-policy=candidate",
+    )
     result.stdout.no_fnmatch_line("*min() arg is an empty sequence*")
     result.stdout.no_fnmatch_line("*Traceback*")
     result.assert_outcomes(failed=1)

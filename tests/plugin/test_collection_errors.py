@@ -375,7 +375,7 @@ def test_a_robot_directory_next_to_the_pairs_file_is_found_by_its_relative_path(
     (pytester.path / "gate.lasertest.yaml").write_text(
         VALID_PAIRS.replace("robot: husky", "robot: robots/mybot")
     )
-    result = pytester.runpytest("-m", "not placement and not control")
+    result = pytester.runpytest("-m", "not placement and not control", "--laser-policy=candidate")
     result.assert_outcomes(passed=1, failed=1)
 
 

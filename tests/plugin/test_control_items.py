@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from pytest_lasertest.sim.client import connected_clients
-from tests.helpers.runs import ARTIFACTS
+from tests.helpers.runs import ARTIFACTS, junit_cases, outcomes
 from tests.helpers.texts import SIZE_PAIR
 
 
@@ -19,9 +19,10 @@ def test_a_candidate_that_fails_in_the_empty_world_fails_the_control_item_and_on
     pytester: pytest.Pytester, placement_pairs: Path
 ) -> None:
     # 6 s cannot take either robot 6 m at move_base's 0.5 m/s: the failure is everywhere, not at
-    # any placement (and the baseline's too, which the report says).
+    # any placement (and the baseline's too, which the report says). The candidate policy fails
+    # it, and the coverage item's loss.
     placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 6.0"))
-    result = pytester.runpytest("-k", "size", "-rs", "--laser-seed=1")
+    result = pytester.runpytest("-k", "size", "-rs", "--laser-seed=1", "--laser-policy=candidate")
     result.assert_outcomes(failed=2, skipped=3)
     result.stdout.fnmatch_lines(
         [
@@ -38,17 +39,31 @@ def test_a_run_that_drives_leaves_no_physics_client_connected(
     pytester: pytest.Pytester, placement_pairs: Path
 ) -> None:
     placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 6.0"))
-    result = pytester.runpytest("-k", "size and no-obstacle")
+    result = pytester.runpytest("-k", "size and no-obstacle", "--laser-policy=candidate")
     result.assert_outcomes(failed=1)
     assert connected_clients() == 0
 
 
-def test_under_the_regression_policy_a_failure_the_baseline_shares_passes(
+def test_by_default_a_failure_the_baseline_shares_is_noted_as_pre_existing_not_failed(
     pytester: pytest.Pytester, placement_pairs: Path
 ) -> None:
     placement_pairs.write_text(SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 6.0"))
-    result = pytester.runpytest("-k", "size and no-obstacle", "--laser-policy=regression")
-    result.assert_outcomes(passed=1)
+    result = pytester.runpytest("-k", "size", "-rs", "--laser-seed=1", "--junitxml=out.xml")
+    assert result.ret == pytest.ExitCode.OK
+    # The placement items skip: a candidate that fails without obstacles fails everywhere.
+    counts = outcomes(result)
+    counts.pop("deselected", None)
+    assert counts == {"skipped": 3, "coverage-loss": 1, "pre-existing": 1}
+    result.stdout.fnmatch_lines(
+        [
+            "PRE-EXISTING   gate.lasertest.yaml::size[[]no-obstacle[]]: the baseline fails "
+            "without any obstacle too: *",
+        ]
+    )
+    cases = junit_cases(pytester.path / "out.xml")
+    control = cases["gate.lasertest.yaml::size[no-obstacle]"]
+    assert control.outcome == "xfail"
+    assert control.message.startswith("the baseline fails without any obstacle too")
 
 
 def test_a_control_item_that_fails_writes_its_picture_world_and_numbers(

@@ -123,7 +123,9 @@ def test_a_bad_controller_is_one_collection_error_naming_the_line_what_is_wrong_
 
 def run_control(pytester: pytest.Pytester, *arguments: str) -> pytest.RunResult:
     """The control items alone, recorded in JUnit XML as out.xml."""
-    return pytester.runpytest("-k", "no-obstacle", "--junitxml=out.xml", *arguments)
+    # The candidate policy fails a failure both robots share: a standing robot fails both.
+    policy = "--laser-policy=candidate"
+    return pytester.runpytest("-k", "no-obstacle", "--junitxml=out.xml", policy, *arguments)
 
 
 @pytest.mark.parametrize(
@@ -164,7 +166,9 @@ def test_every_xdist_worker_imports_the_controller_next_to_the_pairs_file(
     (pytester.path / "gate.lasertest.yaml").write_text(
         SIZE_PAIR.replace("time_limit: 60.0", "time_limit: 12.0\ncontroller: still:StandStill")
     )
-    result = pytester.runpytest_subprocess("-n", "2", "-m", "control or coverage")
+    result = pytester.runpytest_subprocess(
+        "-n", "2", "-m", "control or coverage", "--laser-policy=candidate"
+    )
     result.assert_outcomes(failed=2)
     result.stdout.fnmatch_lines(["  controller still:StandStill (from gate.lasertest.yaml:6)"])
 

@@ -393,8 +393,9 @@ def test_a_command_of_numpy_numbers_or_a_list_drives_exactly_as_the_same_floats(
                 "time_limit: 60.0", f"time_limit: 12.0\ncontroller: {name}_ctl:Controller"
             )
         )
-    result = pytester.runpytest("-m", "control", "--junitxml=out.xml")
-    result.assert_outcomes(failed=len(COMMANDS))  # none reaches the goal, all drive
+    # None reaches the goal, all drive; the candidate policy fails what both robots share.
+    result = pytester.runpytest("-m", "control", "--junitxml=out.xml", "--laser-policy=candidate")
+    result.assert_outcomes(failed=len(COMMANDS))
     cases = junit_cases(pytester.path / "out.xml")
     digests = {
         cases[f"{name}.lasertest.yaml::size[no-obstacle]"].properties[

@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from pytest_lasertest.model.verify import Placement, Scene, Verification, verify
-from tests.helpers.runs import ARTIFACTS, junit_cases
+from tests.helpers.runs import ARTIFACTS, junit_cases, outcomes
 from tests.helpers.texts import SIZE_PAIR
 
 
@@ -22,7 +22,12 @@ def test_the_sparser_scanner_drives_into_its_witness_and_the_denser_one_stops_sh
     pytester: pytest.Pytester, paper: Path
 ) -> None:
     result = pytester.runpytest(
-        "-k", "size and misses-1", "--junitxml=report.xml", "--laser-seed=1", "--laser-profile=ci"
+        "-k",
+        "size and misses-1",
+        "--junitxml=report.xml",
+        "--laser-seed=1",
+        "--laser-profile=ci",
+        "--laser-policy=candidate",
     )
     result.assert_outcomes(passed=1, failed=1)
     result.stdout.fnmatch_lines(
@@ -139,7 +144,10 @@ def test_a_witness_the_ray_cast_rejects_fails_as_a_bug_in_the_solver(
 # The pole-like box of the size pair's third witness: both robots pass the witness itself, and
 # the search finds that moving it 6 cm further on makes the 16-beam robot drive into it.
 ITEM = "paper.lasertest.yaml::size[candidate-misses-2]"
-RUN = ("-k", "size and candidate-misses-2", "--laser-seed=1", "--laser-profile=ci")
+RUN = (
+    *("-k", "size and candidate-misses-2"),
+    *("--laser-seed=1", "--laser-profile=ci", "--laser-policy=candidate"),
+)
 
 
 def properties(pytester: pytest.Pytester, report: str, item: str = ITEM) -> dict[str, str]:
@@ -273,14 +281,16 @@ def test_hypothesis_statistics_count_each_items_outcomes(
     )
 
 
-def test_under_the_regression_policy_a_failure_the_baseline_shares_passes_and_is_counted(
+def test_by_default_a_failure_the_baseline_shares_is_noted_as_pre_existing_and_counted(
     pytester: pytest.Pytester, paper: Path
 ) -> None:
     # Both robots get stuck at this witness, a 5 cm box beside the route.
     item = "paper.lasertest.yaml::size[baseline-misses-2]"
     run = ("-k", "size and baseline-misses-2", "--laser-seed=1", "--laser-examples=2")
-    result = pytester.runpytest(*run, "--laser-policy=regression", "--junitxml=report.xml")
-    result.assert_outcomes(passed=1)
+    result = pytester.runpytest(*run, "--junitxml=report.xml")
+    assert result.ret == pytest.ExitCode.OK
+    assert outcomes(result)["pre-existing"] == 1
+    assert junit_cases(pytester.path / "report.xml")[item].outcome == "xfail"
     found = properties(pytester, "report.xml", item)
     assert found["lasertest.candidate.stuck"] == found["lasertest.baseline.stuck"] == "fail"
     assert int(found["lasertest.pre_existing"]) >= 1

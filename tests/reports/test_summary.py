@@ -59,7 +59,7 @@ def test_the_summary_says_where_the_artifacts_of_failing_items_are() -> None:
     summary = Summary()
     summary.add("a.lasertest.yaml::p[candidate-misses-0]", True, searched(1, 0))
     assert summary.lines("lasertest-artifacts")[-1] == (
-        "artifacts of the 1 failing placement items: lasertest-artifacts"
+        "artifacts of the failures above and below: lasertest-artifacts"
     )
 
 

@@ -11,7 +11,8 @@ from typing import Any
 
 import pytest
 
-from pytest_lasertest.model.policy import REDRAWS, noise_seed
+from pytest_lasertest.model.policy import REDRAWS
+from pytest_lasertest.model.seeds import noise_seed
 from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.search import drives

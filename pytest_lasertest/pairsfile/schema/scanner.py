@@ -13,6 +13,7 @@ from pytest_lasertest.model.scanner_limits import (
     MAX_UPDATE_RATE,
     MIN_UPDATE_RATE,
 )
+from pytest_lasertest.model.seeds import MAX_SEED
 from pytest_lasertest.model.verify import DIRECTIONS
 from pytest_lasertest.pairsfile import placements
 from pytest_lasertest.pairsfile.catalogue import load_catalogue
@@ -88,7 +89,7 @@ def placement() -> Schema:
             "The obstacle to place.",
             *(_obstacle(name) for name in placements.SHAPES),
         ),
-        "seed": whole(0, placements.MAX_SEED, "The scan-noise seed it was recorded with"),
+        "seed": whole(0, MAX_SEED, "The scan-noise seed it was recorded with"),
         "direction": choice(DIRECTIONS, "Which scanner must miss it"),
     }
     return mapping(

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import pytest
 
-from pytest_lasertest.model.policy import Classification, fails
+from pytest_lasertest.model.policy import Classification, Policy
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.plugin.options import LaserOptions
@@ -44,7 +44,19 @@ class ItemFailure(Exception):
 Noted = Literal["pre-existing", "marginal", "coverage-loss"]
 
 
-_NOTED: dict[Classification, Noted] = {"pre-existing": "pre-existing", "marginal": "marginal"}
+_NOTED: dict[str, Noted] = {
+    "pre-existing": "pre-existing",
+    "marginal": "marginal",
+    "coverage-loss": "coverage-loss",
+}
+
+
+def _noted(policy: Policy, found: Classification | Literal["coverage-loss"]) -> Noted | None:
+    """The category a failure is noted under where `policy` does not fail the run on it; None
+    where it does (any failure under `candidate`, a regression under either)."""
+    if policy == "candidate" or found == "regression":
+        return None
+    return _NOTED[found]
 
 
 class NotedFailure(ItemFailure):
@@ -92,16 +104,11 @@ class PairItem(pytest.Item):
         self, found: Classification | Literal["coverage-loss"], report: str, artifacts: Artifacts
     ) -> ItemFailure:
         """The exception to fail with for what the item `found`: a plain `ItemFailure` where the
-        run's policy fails the run on it, else a `NotedFailure` of its category."""
-        policy = self.options.policy
-        if found == "coverage-loss":
-            return (
-                ItemFailure(report, artifacts.written)
-                if policy == "candidate"
-                else NotedFailure("coverage-loss", report, artifacts.written)
-            )
-        category = _NOTED.get(found)
-        if fails(policy, found) or category is None:
+        run's policy fails the run on it, else a `NotedFailure` of its category. Either way the
+        item's `lasertest.outcome` property, in JUnit XML, says which."""
+        category = _noted(self.options.policy, found)
+        self.user_properties.append(("lasertest.outcome", category or "failed"))
+        if category is None:
             return ItemFailure(report, artifacts.written)
         return NotedFailure(category, report, artifacts.written)
 

@@ -1,0 +1,172 @@
+"""Whether the gate's verdict depends on the seed: pairs files run under several seeds, side by
+side, each item's outcome compared across them.
+
+Runs `pytest FILE --laser-seed=S --laser-profile=ci` for each pairs file and seed (in a copy of
+the repository's examples and test data, with a fresh `.hypothesis/` for each run, so that no run
+replays another's failures), reads each run's JUnit XML, and prints for each file:
+
+    FILE: N items; K change with the seed; failed under every seed: ...; under some: ...
+
+then, for each item whose outcome changes, its outcome under each seed (F failed, . passed,
+s skipped, p pre-existing, m marginal, c coverage-loss); and last
+
+    seed-dependent items: K of N; failing items: F (under every seed: A)
+
+Give `--policy candidate` for the verdict before `regression` was the default, and `--pytest`
+to run another checkout's code (a worktree of an older commit: its virtualenv's pytest).
+
+    python benchmarks/verdicts.py [FILE ...] [--seeds 0-7] [--workers 2] [--policy regression]
+                                  [--pytest .venv/bin/pytest] [-k EXPRESSION]
+
+Without FILE, the harmless changes of tests/data/harmless/ (move_base and Nav2), which must
+pass under every seed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+import subprocess
+import tempfile
+import xml.etree.ElementTree as ET
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+HARMLESS = (
+    "tests/data/harmless/move_base.lasertest.yaml",
+    "tests/data/harmless/nav2.lasertest.yaml",
+)
+# A JUnit outcome as one letter: what pytest's progress line shows for it.
+LETTERS = {"passed": ".", "failure": "F", "error": "E", "skipped": "s"}
+# The expected failures lasertest notes, by their `lasertest.outcome` property.
+NOTED = {"pre-existing": "p", "marginal": "m", "coverage-loss": "c"}
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """Each item's outcome letter under each seed, for one pairs file."""
+
+    file: str
+    seeds: tuple[int, ...]
+    outcomes: dict[str, tuple[str, ...]]  # item -> one letter per seed
+
+    def changing(self) -> list[str]:
+        return [item for item, letters in self.outcomes.items() if len(set(letters)) > 1]
+
+    def failing(self, every: bool) -> list[str]:
+        test = all if every else any
+        return [
+            item
+            for item, letters in self.outcomes.items()
+            if test(letter == "F" for letter in letters)
+        ]
+
+
+def seeds_from(text: str) -> tuple[int, ...]:
+    """`0-7` or `1,3,5`."""
+    if "-" in text:
+        low, high = (int(part) for part in text.split("-"))
+        return tuple(range(low, high + 1))
+    return tuple(int(part) for part in text.split(","))
+
+
+def letter(case: ET.Element) -> str:
+    """One JUnit test case's outcome as a letter."""
+    ending = next((child for child in case if child.tag not in ("properties", "system-out")), None)
+    if ending is None:
+        return "."
+    if ending.get("type") == "pytest.xfail":
+        outcome = {prop.get("name"): prop.get("value") for prop in case.iter("property")}
+        return NOTED.get(str(outcome.get("lasertest.outcome")), "x")
+    return LETTERS.get(ending.tag, "?")
+
+
+@dataclass(frozen=True)
+class Runs:
+    """How each run is made: which pytest, in which tree, with which options."""
+
+    pytest: str
+    tree: Path
+    workers: int
+    policy: str
+    select: str | None  # -k
+
+    def command(self, file: str, seed: int, report: Path) -> list[str]:
+        command = [self.pytest, file, f"--laser-seed={seed}", "--laser-profile=ci"]
+        command += ["-p", "no:randomly", "-p", "no:cacheprovider", "-q"]
+        command += [f"--laser-policy={self.policy}", f"--junitxml={report}"]
+        if self.workers > 1:
+            command += ["-n", str(self.workers)]
+        return command + (["-k", self.select] if self.select else [])
+
+
+def run(runs: Runs, file: str, seed: int) -> dict[str, str]:
+    """One run of `file` under `seed`: each item's outcome letter."""
+    tree = runs.tree
+    shutil.rmtree(tree / ".hypothesis", ignore_errors=True)
+    report = tree / "verdicts.xml"
+    command = runs.command(file, seed, report)
+    subprocess.run(command, cwd=tree, capture_output=True, check=False)
+    cases = ET.parse(report).iter("testcase")
+    return {str(case.get("name")): letter(case) for case in cases}
+
+
+def sweep(runs: Runs, file: str, seeds: Sequence[int]) -> Sweep:
+    """`file` under each seed."""
+    by_seed = [run(runs, file, seed) for seed in seeds]
+    items = sorted(set().union(*by_seed))
+    outcomes = {item: tuple(runs.get(item, "-") for runs in by_seed) for item in items}
+    return Sweep(file, tuple(seeds), outcomes)
+
+
+def report(sweep: Sweep) -> list[str]:
+    changing = sweep.changing()
+    lines = [
+        f"{sweep.file}: {len(sweep.outcomes)} items; {len(changing)} change with the seed; "
+        f"failed under every seed: {', '.join(sweep.failing(every=True)) or 'none'}; "
+        f"under some: {', '.join(sweep.failing(every=False)) or 'none'}"
+    ]
+    lines += [f"  {''.join(sweep.outcomes[item])}  {item}" for item in changing]
+    return lines
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("files", nargs="*", default=list(HARMLESS))
+    parser.add_argument("--seeds", type=seeds_from, default=tuple(range(8)))
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--policy", default="regression")
+    parser.add_argument("--pytest", default=str(REPO / ".venv" / "bin" / "pytest"))
+    parser.add_argument("-k", dest="select", default=None, help="pytest's -k, to run fewer")
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as scratch:
+        tree = checkout(Path(scratch))
+        runs = Runs(args.pytest, tree, args.workers, args.policy, args.select)
+        sweeps = [sweep(runs, file, args.seeds) for file in args.files]
+    for done in sweeps:
+        print("\n".join(report(done)))
+    total = sum(len(done.outcomes) for done in sweeps)
+    changing = sum(len(done.changing()) for done in sweeps)
+    failing = sum(len(done.failing(every=False)) for done in sweeps)
+    always = sum(len(done.failing(every=True)) for done in sweeps)
+    print(
+        f"seed-dependent items: {changing} of {total}; failing items: {failing} "
+        f"(under every seed: {always})"
+    )
+
+
+def checkout(tree: Path) -> Path:
+    """The examples and test data in `tree`, committed: the CI gate example reads its
+    description at HEAD."""
+    for folder in ("examples", "tests/data"):
+        shutil.copytree(REPO / folder, tree / folder)
+    identity = ["-c", "user.name=lasertest", "-c", "user.email=lasertest@localhost"]
+    for command in (["init", "-q"], ["add", "-A"], [*identity, "commit", "-qm", "sweep"]):
+        subprocess.run(["git", *command], cwd=tree, check=True, capture_output=True)
+    return tree
+
+
+if __name__ == "__main__":
+    main()
