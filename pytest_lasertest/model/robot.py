@@ -34,6 +34,7 @@ class Robot:
     # pytest_lasertest.nav.nav2.params; and the Nav2 release imitated.
     nav2: tuple[tuple[str, str, ParameterValue], ...] = ()
     nav2_release: str = "jazzy"
+    nav2_file: str | None = None  # the params file `nav2` was read from, as reports name it
     body: Body = HUSKY_BODY
 
     @property

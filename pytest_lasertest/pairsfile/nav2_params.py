@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
+from pathlib import Path
 
 from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.inputs.node import SpecNode, describe, read_root
@@ -35,10 +36,11 @@ def read_nav2(fields: Mapping[str, SpecNode], robot: Robot) -> Robot:
     release = robot.nav2_release
     if "nav2_version" in fields:
         release = read_release(fields["nav2_version"])
-    parameters = robot.nav2
-    if "nav2" in fields:
-        parameters = load_nav2_file(fields["nav2"], release)
-    return dataclasses.replace(robot, nav2=parameters, nav2_release=release)
+    if "nav2" not in fields:
+        return dataclasses.replace(robot, nav2_release=release)
+    parameters = load_nav2_file(fields["nav2"], release)
+    path = nav2_path(fields["nav2"])
+    return dataclasses.replace(robot, nav2=parameters, nav2_release=release, nav2_file=str(path))
 
 
 def read_release(node: SpecNode) -> str:
@@ -49,10 +51,15 @@ def read_release(node: SpecNode) -> str:
     return release
 
 
+def nav2_path(node: SpecNode) -> Path:
+    """The params file `nav2:` names, relative to the file it is written in."""
+    return node.location.path.parent / node.text(what="a path to a Nav2 params file")
+
+
 def load_nav2_file(node: SpecNode, release: str) -> tuple[Parameter, ...]:
     """The params file `node` names, relative to the file it is written in, checked by making
     Nav2's settings from it."""
-    path = node.location.path.parent / node.text(what="a path to a Nav2 params file")
+    path = nav2_path(node)
     if not path.is_file():
         raise node.error(
             f"{path} does not exist",

@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from pytest_lasertest.inputs.errors import Location, SpecError
-from pytest_lasertest.inputs.node import SpecNode, read_root
+from pytest_lasertest.inputs.node import SpecNode
 from pytest_lasertest.model.sensor import same_sensing
 from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
 from pytest_lasertest.pairsfile.bundled import ROBOTS_DIR
@@ -25,7 +25,6 @@ from pytest_lasertest.pairsfile.controller import (
     checked_factory,
     default_controller,
 )
-from pytest_lasertest.pairsfile.robot import resolve_robot
 from pytest_lasertest.plugin.items.control import ControlItem
 from pytest_lasertest.plugin.items.coverage import CoverageItem
 from pytest_lasertest.plugin.items.pinned import pinned_items
@@ -167,35 +166,13 @@ def _qualified_name(factory: object) -> str:
 
 def params_file_name(spec: PairsFile, root: Path) -> str | None:
     """The Nav2 params file the pairs file's robots drive with, as warnings name it, the same
-    from every pairs file and worker: a bundled robot's from the package's parent directory,
-    else relative to the rootdir, else absolute; None if it cannot be found again."""
-    path = nav2_params_file(spec)
-    if path is None:
+    from every pairs file and worker: a bundled robot's as `husky/nav2.yaml of the bundled
+    robots`, else relative to the rootdir, else absolute; None for a robot without one."""
+    if spec.robot.nav2_file is None:
         return None
-    path = Path(os.path.realpath(path))
-    for base in (ROBOTS_DIR.parent.parent, root.resolve()):
-        if path.is_relative_to(base):
-            return path.relative_to(base).as_posix()
+    path = Path(os.path.realpath(spec.robot.nav2_file))
+    if path.is_relative_to(ROBOTS_DIR.resolve()):
+        return f"{path.relative_to(ROBOTS_DIR.resolve()).as_posix()} of the bundled robots"
+    if path.is_relative_to(root.resolve()):
+        return path.relative_to(root.resolve()).as_posix()
     return path.as_posix()
-
-
-def nav2_params_file(spec: PairsFile) -> Path | None:
-    """The file `nav2:` names, as `pairsfile/nav2_params.py` reads it: the pairs file's
-    `navigation: {nav2: FILE}`, else its robot's, relative to the file that names it; None if
-    it cannot be found again (the files were edited since they were read)."""
-    try:
-        sections = read_root(spec.path, what="pairs file", needs="").entries(what="sections")
-        navigation = sections.get("navigation")
-        named = navigation.entries(what="navigation").get("nav2") if navigation else None
-        if named is None:
-            named = _robot_nav2(sections["robot"])
-        return None if named is None else named.location.path.parent / named.text()
-    except (SpecError, KeyError, OSError):
-        return None
-
-
-def _robot_nav2(robot: SpecNode) -> SpecNode | None:
-    """The `nav2:` of a robot written in place, or of the robot.yaml `robot:` names."""
-    if not isinstance(robot.value, dict):
-        robot = read_root(resolve_robot(robot), what="robot file", needs="")
-    return robot.entries(what="robot fields").get("nav2")

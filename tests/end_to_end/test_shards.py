@@ -14,7 +14,8 @@ from tests.helpers import EXAMPLES
 from tests.helpers.runs import junit_cases
 
 NIGHTLY = EXAMPLES / "ci" / "nightly.yml"
-# Six of the paper's size pair's items, failures and passes among them, searching little.
+# Six of the paper's size pair's items, passes and failures that do not fail the run (a loss of
+# coverage, pre-existing failures) among them, searching little.
 ITEMS = "coverage or no-obstacle or candidate-misses-0 or candidate-misses-1 or baseline-misses-"
 SELECTION = ("-k", f"size and ({ITEMS})", "--laser-examples=2", "-p", "no:randomly")
 
@@ -70,4 +71,4 @@ def test_the_shards_outcomes_together_are_one_run_s(pytester: pytest.Pytester) -
     pytester.runpytest(*whole, *SELECTION)
     one_run = junit_cases(pytester.path / "whole.xml")
     assert shards == {name: case.outcome for name, case in one_run.items()}
-    assert {"failure", "passed"} <= set(shards.values())
+    assert {"xfail", "passed"} <= set(shards.values())

@@ -42,7 +42,7 @@ def test_profile_fields_next_to_urdf_override_what_the_description_says(
             "pose: {xyz: [0.3, 0.0, 0.5], rpy: [0.0, 0.0, 0.0]}}",
         )
     )
-    result = pytester.runpytest("-k", "coverage", "--laser-seed=1")
+    result = pytester.runpytest("-k", "coverage", "--laser-seed=1", "--laser-policy=candidate")
     result.stdout.fnmatch_lines(["  candidate  front in robot.urdf: *range 0.10-5.00 m*0.500 m"])
 
 
@@ -67,7 +67,7 @@ def test_a_xacro_description_is_expanded_with_its_args_and_packages(
         "    candidate: {urdf: robot.urdf.xacro, args: {laser_enabled: 1}, "
         "packages: {lidars: lidar_pkg}, samples: 32}\n"
     )
-    result = pytester.runpytest("-k", "coverage", "--laser-seed=1")
+    result = pytester.runpytest("-k", "coverage", "--laser-seed=1", "--laser-policy=candidate")
     result.stdout.fnmatch_lines(
         [
             "  baseline   front in robot.urdf.xacro: 64 beams over [[]-2.000, 2.000[]] rad, "
@@ -338,7 +338,7 @@ def test_a_description_at_a_ref_includes_its_files_as_that_revision_holds_them(
         f"pairs:\n  fewer:\n    baseline: {{{scanner}, ref: HEAD}}\n"
         f"    candidate: {{{scanner}}}\n"
     )
-    result = pytester.runpytest("-k", "coverage", "--laser-seed=1")
+    result = pytester.runpytest("-k", "coverage", "--laser-seed=1", "--laser-policy=candidate")
     result.stdout.fnmatch_lines(
         [
             "  baseline   front in robot.urdf.xacro at HEAD (*): 64 beams *",

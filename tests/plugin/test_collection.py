@@ -184,7 +184,8 @@ def test_collection_does_not_load_z3_and_running_a_placement_item_does(
     pytester.makeconftest(Z3_PROBE)
     counts = outcomes(pytester.runpytest_subprocess("-k", "size and candidate"))
     # It ran, whatever it found (passed, failed, pre-existing or marginal).
-    assert sum(counts.values()) - counts.get("deselected", 0) - counts.get("skipped", 0) == 1
+    ran = ("passed", "failed", "pre-existing", "marginal")
+    assert sum(counts.get(outcome, 0) for outcome in ran) == 1
     assert (pytester.path / "z3.txt").read_text() == "False True"
 
 

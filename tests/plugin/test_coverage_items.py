@@ -17,7 +17,7 @@ def test_a_failure_points_at_the_pair_in_the_pairs_file(
     result.assert_outcomes(passed=1, failed=1)
     result.stdout.fnmatch_lines(
         [
-            "*_ to_lms111[[]coverage[]] _*",
+            "*_ gate.lasertest.yaml::to_lms111[[]coverage[]] _*",
             "the candidate scans less than the baseline: 2 losses of coverage",
             "  pair       to_lms111 (gate.lasertest.yaml:11)",
             "  baseline   inline profile: 720 beams over [[]-1.570, 1.570[]] rad, *",

@@ -38,6 +38,10 @@ class Controller:
 {factory}"""
 
 
+# These controllers stand still, or nearly: both robots fail, which the candidate policy fails.
+STRICT = "--laser-policy=candidate"
+
+
 def gate(pytester: pytest.Pytester, source: str, factory: str = "ctl:Controller") -> None:
     """`ctl.py` holding `source`, and a pairs file whose robots drive with `factory` from it."""
     (pytester.path / "ctl.py").write_text(source)
@@ -138,7 +142,7 @@ def test_a_controller_that_breaks_the_drive_fails_its_item_saying_what_it_did_an
     pytester: pytest.Pytester, case: Broken
 ) -> None:
     gate(pytester, controller_module(case.body, case.factory), case.name)
-    result = pytester.runpytest("-m", "control")
+    result = pytester.runpytest("-m", "control", STRICT)
     result.assert_outcomes(failed=1)
     result.stdout.fnmatch_lines(
         [
@@ -199,7 +203,7 @@ def test_a_controller_that_never_returns_fails_its_item_within_seconds_leaving_t
     handler = signal.getsignal(signal.SIGALRM)
     gate(pytester, controller_module("__import__('time').sleep(3600)"))
     started = time.monotonic()
-    result = pytester.runpytest("-m", "control")
+    result = pytester.runpytest("-m", "control", STRICT)
     assert time.monotonic() - started < 30.0
     result.assert_outcomes(failed=1)
     result.stdout.fnmatch_lines(
@@ -340,7 +344,7 @@ def test_unusual_factories_that_can_make_a_controller_are_collected(
     pytester: pytest.Pytester, factory: str
 ) -> None:
     gate(pytester, UNUSUAL_BUT_VALID, factory)
-    result = pytester.runpytest("-m", "control")
+    result = pytester.runpytest("-m", "control", STRICT)
     # It stands still: the goal is not reached, and nothing else goes wrong.
     result.assert_outcomes(failed=1)
     result.stdout.fnmatch_lines(["  baseline   *goal not reached*"])
@@ -350,7 +354,7 @@ def test_a_controller_drawing_from_the_global_random_state_is_warned_about_once_
     pytester: pytest.Pytester,
 ) -> None:
     gate(pytester, controller_module("return __import__('random').uniform(0, 1), 0.0"))
-    result = pytester.runpytest("-m", "control")
+    result = pytester.runpytest("-m", "control", STRICT)
     result.stdout.fnmatch_lines(
         [
             "*warnings summary*",
@@ -370,7 +374,7 @@ def test_a_controller_with_a_generator_of_its_own_is_not_warned_about(
     pytester: pytest.Pytester,
 ) -> None:
     gate(pytester, controller_module("return __import__('random').Random(0).uniform(0, 1), 0.0"))
-    result = pytester.runpytest("-m", "control")
+    result = pytester.runpytest("-m", "control", STRICT)
     result.stdout.no_fnmatch_line("*ControllerWarning*")
 
 
@@ -417,7 +421,7 @@ def test_a_controller_that_overwrites_its_scans_in_place_does_not_change_the_nex
         "        return 0.0, 0.0"
     )
     gate(pytester, controller_module(body))
-    result = pytester.runpytest("-m", "control")
+    result = pytester.runpytest("-m", "control", STRICT)
     result.assert_outcomes(failed=1)
     result.stdout.fnmatch_lines(["  baseline   *goal not reached*"])
     result.stdout.no_fnmatch_line("*the controller broke the drive*")

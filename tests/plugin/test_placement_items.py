@@ -120,7 +120,7 @@ def test_a_witness_the_ray_cast_rejects_fails_as_a_bug_in_the_solver(
     result.assert_outcomes(failed=1)
     result.stdout.fnmatch_lines(
         [
-            "*_ size[[]candidate-misses-0[]] _*",
+            "*_ gate.lasertest.yaml::size[[]candidate-misses-0[]] _*",
             "the exact ray cast rejects witness candidate-misses-0, which the solver returned as "
             "verified: this is a bug in pytest-lasertest's solver*",
             "  pair       size (gate.lasertest.yaml:10)",
@@ -144,10 +144,7 @@ def test_a_witness_the_ray_cast_rejects_fails_as_a_bug_in_the_solver(
 # The pole-like box of the size pair's third witness: both robots pass the witness itself, and
 # the search finds that moving it 6 cm further on makes the 16-beam robot drive into it.
 ITEM = "paper.lasertest.yaml::size[candidate-misses-2]"
-RUN = (
-    *("-k", "size and candidate-misses-2"),
-    *("--laser-seed=1", "--laser-profile=ci", "--laser-policy=candidate"),
-)
+RUN = ("-k", "size and candidate-misses-2", "--laser-seed=1", "--laser-profile=ci")
 
 
 def properties(pytester: pytest.Pytester, report: str, item: str = ITEM) -> dict[str, str]:

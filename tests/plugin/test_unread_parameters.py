@@ -63,7 +63,7 @@ def test_a_bundled_robot_s_params_file_is_named_from_the_package(
 ) -> None:
     (pytester.path / "gate.lasertest.yaml").write_text(pairs_text(None))
     (line,) = warnings_of(pytester)
-    assert f"{WARNING}the params file pytest_lasertest/robots/husky/nav2.yaml (" in line
+    assert f"{WARNING}the params file husky/nav2.yaml of the bundled robots (" in line
 
 
 def test_a_pairs_file_whose_pairs_read_alike_warns_of_nothing(
