@@ -7,9 +7,8 @@ fails on such a flip is a gate teams switch off. One that does not hold under ev
 *marginal*; so is one where the baseline passed the oracle the candidate failed by less than
 `NEAR_MISS` (a collision missed by 4 mm, say): both robots came within a centimetre of the same
 failure, and which side of it each ended on says nothing about the change. Every item decides
-with `fails`: under the `regression` policy (the default) only a
-regression fails it; under `candidate` any failure of the candidate does, marginal and
-pre-existing ones included.
+with `fails`: under the `regression` policy (the default) only a regression fails it; under
+`candidate` any failure of the candidate does, marginal and pre-existing ones included.
 """
 
 from __future__ import annotations

@@ -102,7 +102,7 @@ def test_a_laser_edit_is_judged_and_leaves_junit_xml_and_evidence(
     # (the robot may still drive as safely: the placement items judge that).
     assert result.ret == pytest.ExitCode.OK
     counts = outcomes(result)
-    counts.pop("deselected")
+    counts.pop("deselected", None)  # not counted where xdist runs it (-n auto)
     assert counts == {"passed": 1, "coverage-loss": 1}
     result.stdout.fnmatch_lines(
         ["COVERAGE-LOSS  ci/gate.lasertest.yaml::front_laser[[]coverage[]]: the candidate scans *"]
