@@ -13,11 +13,11 @@ instead. Any other exception is a bug in the plugin, and pytest shows its traceb
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal, cast
 
 import pytest
 
-from pytest_lasertest.model.policy import Classification, Policy
+from pytest_lasertest.model.policy import Classification, Policy, fails
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.plugin.options import LaserOptions
@@ -44,19 +44,14 @@ class ItemFailure(Exception):
 Noted = Literal["pre-existing", "marginal", "coverage-loss"]
 
 
-_NOTED: dict[str, Noted] = {
-    "pre-existing": "pre-existing",
-    "marginal": "marginal",
-    "coverage-loss": "coverage-loss",
-}
-
-
 def _noted(policy: Policy, found: Classification | Literal["coverage-loss"]) -> Noted | None:
     """The category a failure is noted under where `policy` does not fail the run on it; None
-    where it does (any failure under `candidate`, a regression under either)."""
-    if policy == "candidate" or found == "regression":
+    where it does (see `policy.fails`; a loss of coverage fails only under `candidate`)."""
+    if found == "coverage-loss":
+        return None if policy == "candidate" else found
+    if fails(policy, found) or found not in ("pre-existing", "marginal"):
         return None
-    return _NOTED[found]
+    return cast(Noted, found)
 
 
 class NotedFailure(ItemFailure):
