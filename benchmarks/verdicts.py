@@ -27,7 +27,9 @@ from __future__ import annotations
 import argparse
 import shutil
 import subprocess
+import sys
 import tempfile
+import time
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -108,9 +110,15 @@ def run(runs: Runs, file: str, seed: int) -> dict[str, str]:
     shutil.rmtree(tree / ".hypothesis", ignore_errors=True)
     report = tree / "verdicts.xml"
     command = runs.command(file, seed, report)
+    started = time.perf_counter()
     subprocess.run(command, cwd=tree, capture_output=True, check=False)
     cases = ET.parse(report).iter("testcase")
-    return {str(case.get("name")): letter(case) for case in cases}
+    outcomes = {str(case.get("name")): letter(case) for case in cases}
+    # Progress, on stderr: a sweep of eight seeds takes the better part of an hour.
+    letters = "".join(sorted(outcomes.values()))
+    seconds = time.perf_counter() - started
+    print(f"{file} seed {seed}: {letters} ({seconds:.0f} s)", file=sys.stderr, flush=True)
+    return outcomes
 
 
 def sweep(runs: Runs, file: str, seeds: Sequence[int]) -> Sweep:

@@ -23,9 +23,10 @@ import pytest_lasertest.solver.plan  # noqa: F401  (see below)
 # `$(find)` reaches a substitution_args module the expansion did not patch.
 pytest_plugins = ["pytester"]
 
-# The pairs files under data/ are inputs the tests read (the worlds take minutes to drive), not
-# items of this suite: the plugin would otherwise collect every `*.lasertest.yaml` it passes.
-collect_ignore = ["data"]
+# The pairs files under data/ and docs/inputs/ are inputs the tests read (the worlds take minutes
+# to drive; the docs show the errors of the broken ones), not items of this suite: the plugin
+# would otherwise collect every `*.lasertest.yaml` it passes.
+collect_ignore = ["data", "docs/inputs"]
 
 # The helpers assert too (assert_one_clean_error, the corpus's assert_profile): rewrite their
 # asserts as pytest does the tests', so that a failure shows the values. This must come before

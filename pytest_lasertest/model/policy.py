@@ -1,14 +1,16 @@
 """What a change did where both robots drove, and which outcomes fail the gate.
 
 A failure is the change's doing, a *regression*, only where the candidate fails and the baseline
-passes under the run's scan noise and again under every further draw of it (`REDRAWS`): a
-failure decided by a millimetre of progress flips with one draw of 1 mm noise, and a gate that
-fails on such a flip is a gate teams switch off. One that does not hold under every draw is
-*marginal*; so is one where the baseline passed the oracle the candidate failed by less than
-`NEAR_MISS` (a collision missed by 4 mm, say): both robots came within a centimetre of the same
-failure, and which side of it each ended on says nothing about the change. Every item decides
-with `fails`: under the `regression` policy (the default) only a regression fails it; under
-`candidate` any failure of the candidate does, marginal and pre-existing ones included.
+passes under the run's scan noise and again under every further draw (`REDRAWS`) of what must
+not decide it: the scan noise, and where within `JITTER` each obstacle stands (`draws.Draw`).
+A failure decided by a millimetre of progress, or by which costmap cell an obstacle's edge falls
+in, flips with such a draw, and a gate that fails on such a flip is a gate teams switch off. One
+that does not hold under every draw is *marginal*; so is one where the baseline passed the
+oracle the candidate failed by less than `NEAR_MISS` (a collision missed by 4 mm, say): both
+robots came within a centimetre of the same failure, and which side of it each ended on says
+nothing about the change. Every item decides with `fails`: under the `regression` policy (the
+default) only a regression fails it; under `candidate` any failure of the candidate does,
+marginal and pre-existing ones included.
 """
 
 from __future__ import annotations
@@ -22,8 +24,15 @@ DEFAULT_POLICY: Policy = "regression"
 Classification = Literal["regression", "marginal", "pre-existing", "improvement", "unchanged"]
 # The classes in which the candidate failed.
 CANDIDATE_FAILED: tuple[Classification, ...] = ("regression", "marginal", "pre-existing")
-# The further scan-noise draws a regression must survive before it is reported as one.
+# The further draws (scan noise and obstacle positions) a regression must survive before it is
+# reported as one.
 REDRAWS = 2
+# m: how far, in x and in y, a draw may move each obstacle. Scan noise alone decides little under
+# a stack that marks 5 cm costmap cells: 1 mm of noise seldom moves an obstacle's edge into
+# another cell, and a harmless 1 cm re-mount on the Husky under Nav2 failed one placement under
+# every noise draw yet passed 7 of 10 placements within a centimetre of it, while the baseline
+# failed 2 of them. A centimetre is also about how well a placed obstacle's position is known.
+JITTER = 0.01
 # m: the least margin by which the baseline must pass the collision or stuck oracle that the
 # candidate failed, in every draw, for the failure to be the change's. A centimetre: the order
 # of the catalogue scanners' noise (sigma 10-20 mm), far above PyBullet's contact slop (~1 mm).

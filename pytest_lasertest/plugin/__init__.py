@@ -80,7 +80,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         default=DEFAULT_POLICY,
         metavar="NAME",
         help="what fails the run: 'regression' (default: only where the candidate fails and "
-        "the baseline passes, under every scan-noise draw; pre-existing and marginal failures "
+        "the baseline passes, under every further draw of the scan noise and of where each "
+        "obstacle stands within 1 cm; pre-existing and marginal failures "
         "and losses of coverage are reported as expected failures) or 'candidate' (any "
         "failure of the candidate).",
     )

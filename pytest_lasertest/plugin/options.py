@@ -156,7 +156,8 @@ def parse_policy(text: str) -> Policy:
     if text not in POLICIES:
         raise pytest.UsageError(
             f"--laser-policy={text!r} is not a policy: choose 'regression' (the default: fail "
-            "only where the candidate fails and the baseline passes, under every noise draw) "
+            "only where the candidate fails and the baseline passes, under every further draw of "
+            "the scan noise and of where each obstacle stands within 1 cm) "
             "or 'candidate' (fail whenever the candidate fails, pre-existing and marginal "
             "failures and losses of coverage included)"
         )

@@ -7,7 +7,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from pytest_lasertest.inputs.errors import display_path
-from pytest_lasertest.model.policy import NEAR_MISS, Classification, Policy
+from pytest_lasertest.model.draws import Draw
+from pytest_lasertest.model.policy import JITTER, NEAR_MISS, Classification, Policy
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.pairsfile import Pair
 from pytest_lasertest.pairsfile.controller import ControllerChoice
@@ -20,7 +21,7 @@ from pytest_lasertest.sim.scenario import ControllerError, Run
 MEANINGS: dict[Classification, str] = {
     "regression": "a regression: the baseline passes where the candidate fails",
     "marginal": "marginal: the candidate fails where the baseline passes, but not under every "
-    "draw of the scan noise",
+    "further draw of the scan noise and the obstacles' positions",
     "pre-existing": "pre-existing: the baseline fails here too",
     "improvement": "an improvement: the candidate passes where the baseline fails",
     "unchanged": "unchanged: both pass",
@@ -87,8 +88,8 @@ def _frame_lines(frames: tuple[Frame, ...]) -> list[str]:
 
 def redrive_lines(drive: PairDrive) -> list[str]:
     """Why a failure of the candidate alone is, or is not, a regression: a near miss of the
-    baseline's, and how it held under further draws of the scan noise (each draw's seed and both
-    robots' outcomes with their margins)."""
+    baseline's, and how it held under further draws (each draw's noise seed, how far it moved
+    the obstacles, and both robots' outcomes with their margins)."""
     lines = [
         f"  near miss  draw {draw}: the baseline passed {name} by only {margin * 1000:.1f} mm "
         f"(under {NEAR_MISS * 1000:.0f} mm): both robots came that near the same failure"
@@ -97,19 +98,31 @@ def redrive_lines(drive: PairDrive) -> list[str]:
     ]
     redrives, classification = drive.redrives, drive.classification
     if not redrives:
-        if classification == "regression":
-            lines.append(
-                "  re-driven  no: neither scanner has scan noise, so every draw drives alike"
-            )
         return lines
     held = "held under each" if classification == "regression" else "did not hold under every"
-    lines.append(f"  re-driven  under {len(redrives)} further noise draws; the failure {held}:")
-    for draw, again in enumerate(redrives, start=1):
+    lines.append(
+        f"  re-driven  under {_draws(len(redrives))} (fresh scan noise, each obstacle moved "
+        f"within {JITTER * 1000:.0f} mm); the failure {held}:"
+    )
+    for number, again in enumerate(redrives, start=1):
+        assert again.draw is not None  # `drives.redrawn` records every re-drive's draw
         lines.append(
-            f"    draw {draw}   seed {again.candidate.scenario.seed}: baseline "
-            f"{_brief(again.baseline)}; candidate {_brief(again.candidate)}"
+            f"    draw {number}   {_drawn(again.draw)}: baseline {_brief(again.baseline)}; "
+            f"candidate {_brief(again.candidate)}"
         )
     return lines
+
+
+def _draws(count: int) -> str:
+    """`1 further draw`, `2 further draws`."""
+    return f"{count} further draw" if count == 1 else f"{count} further draws"
+
+
+def _drawn(draw: Draw) -> str:
+    """`seed 2230207094, obstacle moved (+2.7, -4.6) mm`."""
+    moves = ", ".join(f"({dx * 1000:+.1f}, {dy * 1000:+.1f})" for dx, dy in draw.shifts)
+    moved = f"obstacle moved {moves} mm" if len(draw.shifts) == 1 else f"obstacles moved {moves} mm"
+    return f"seed {draw.noise}, {moved}" if draw.shifts else f"seed {draw.noise}"
 
 
 def _brief(run: Run) -> str:

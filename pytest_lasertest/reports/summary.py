@@ -14,7 +14,8 @@ from dataclasses import dataclass, field
 ORACLES = ("collision", "stuck", "goal")
 NOTED_TITLE = (
     "Failures that do not fail the run (the change did not cause them, or they did not hold "
-    "under every noise draw; --laser-policy=candidate fails them)"
+    "under every draw of the scan noise and the obstacles' positions; --laser-policy=candidate "
+    "fails them)"
 )
 COLUMNS = (
     "witnesses",
@@ -38,7 +39,7 @@ class PairTally:
     failed: int = 0  # items the policy failed
     oracles: dict[str, int] = field(default_factory=lambda: dict.fromkeys(ORACLES, 0))
     regressions: int = 0  # items whose search found a regression, failed or not
-    marginal: int = 0  # items whose search found a failure that some noise draw undid
+    marginal: int = 0  # items whose search found a failure that some further draw undid
     pre_existing: int = 0  # items whose search found a failure the baseline shares
 
     def add(self, failed: bool, properties: Mapping[str, object]) -> None:

@@ -5,8 +5,8 @@ pairs file's route with a fresh controller from the same factory (the one the pa
 conftest hook or the default chose), in a world holding the given obstacles (none for the pair's
 control run), with scan noise from the run's seed. Runs go through the session's `RunCache`.
 Where the candidate fails and the baseline passes, both drive again under `REDRAWS` further
-draws of the scan noise, and only a failure that holds under every draw is a regression
-(`model/policy.py`).
+draws (`model/draws.py`: fresh scan noise, each obstacle moved within a centimetre), and only a
+failure that holds under every draw is a regression (`model/policy.py`).
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from pytest_lasertest.model.draws import Draw, redraw
 from pytest_lasertest.model.obstacles import Obstacle, placed
 from pytest_lasertest.model.policy import (
     NEAR_MISS,
@@ -25,7 +26,6 @@ from pytest_lasertest.model.policy import (
     classify,
     fails,
 )
-from pytest_lasertest.model.seeds import noise_seed
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.pairsfile import Pair, PairsFile
@@ -37,11 +37,12 @@ from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
 @dataclass(frozen=True, eq=False)
 class PairDrive:
     """The runs of the baseline and the candidate through one world, and, where the candidate
-    alone failed, both again under further draws of the scan noise."""
+    alone failed, both again under further draws (`draws.Draw`)."""
 
     baseline: Run
     candidate: Run
     redrives: tuple[PairDrive, ...] = ()  # under draws 1, 2, ... in order
+    draw: Draw | None = None  # what this drive drew; None: the run's own seed and obstacles
 
     @property
     def classification(self) -> Classification:
@@ -80,25 +81,22 @@ def near_misses(baseline: Run, candidate: Run) -> list[tuple[str, float]]:
 
 
 def redrawn(
-    first: tuple[Run, Run | None], drive: Callable[[str, int], Run]
+    first: tuple[Run, Run | None], drive: Callable[[str, Draw], Run]
 ) -> tuple[PairDrive, ...]:
-    """Both robots again under each further draw of the scan noise, while the candidate alone
-    keeps failing; none where `first` (the candidate's run, then the baseline's, driven only if
-    the candidate failed) is no regression or a near miss of the baseline's, or where neither
-    scanner is noisy, so that every draw is the same. `drive(side, seed)` drives one side
-    ("baseline" or "candidate")."""
+    """Both robots again under each further draw, while the candidate alone keeps failing; none
+    where `first` (the candidate's run, then the baseline's, driven only if the candidate
+    failed) is no regression or a near miss of the baseline's. `drive(side, draw)` drives one
+    side ("baseline" or "candidate") under a draw."""
     candidate, baseline = first
     if candidate.passed or baseline is None or not baseline.passed:
         return ()
     if near_misses(baseline, candidate):
         return ()  # marginal already
     scenario = candidate.scenario
-    if scenario.profile.noise is None and baseline.scenario.profile.noise is None:
-        return ()
     drives: list[PairDrive] = []
-    for draw in range(1, REDRAWS + 1):
-        seed = noise_seed(scenario.seed, draw)
-        again = PairDrive(baseline=drive("baseline", seed), candidate=drive("candidate", seed))
+    for number in range(1, REDRAWS + 1):
+        draw = redraw(scenario.seed, number, len(scenario.obstacles))
+        again = PairDrive(drive("baseline", draw), drive("candidate", draw), draw=draw)
         drives.append(again)
         if not again.baseline.passed or again.candidate.passed:
             break  # marginal already: the draws left cannot make it a regression
@@ -150,23 +148,31 @@ def drive_pair(
 ) -> PairDrive:
     """Drive both robots of the pair through a world holding `obstacles`, built in `client`
     (see `run_scenario`), each with a controller from `controller`; where the candidate alone
-    fails, again under further noise draws (`redrawn`)."""
+    fails, again under further draws (`redrawn`)."""
 
-    def side(name: str, noise: int) -> Run:
+    def side(name: str, draw: Draw | None = None) -> Run:
         profile = pair.candidate.profile if name == "candidate" else pair.baseline.profile
-        return cache.run(scenario(spec, profile, obstacles, noise), controller, client)
+        world = scenario(spec, profile, obstacles, seed, draw)
+        return cache.run(world, controller, client)
 
-    baseline, candidate = side("baseline", seed), side("candidate", seed)
+    baseline, candidate = side("baseline"), side("candidate")
     return PairDrive(baseline, candidate, redrawn((candidate, baseline), side))
 
 
 def scenario(
-    spec: PairsFile, profile: LaserProfile, obstacles: tuple[Obstacle, ...], seed: int
+    spec: PairsFile,
+    profile: LaserProfile,
+    obstacles: tuple[Obstacle, ...],
+    seed: int,
+    draw: Draw | None = None,
 ) -> Scenario:
     """One robot of the pairs file, carrying `profile`, on the file's route through a world
     holding `obstacles`, each placed to a micrometre (`obstacles.placed`: a pinned replay writes
-    them so, and drives the same), with scan noise from `seed`."""
+    them so, and drives the same), with scan noise from `seed`; under a further `draw`, with its
+    noise and the obstacles moved as it says."""
     world = spec.world
+    if draw is not None:
+        obstacles, seed = draw.moved(obstacles), draw.noise
     return Scenario(
         spec.robot,
         profile,

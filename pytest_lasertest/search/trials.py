@@ -3,8 +3,9 @@
 A trial moves the witness's obstacle by an offset, checks with the exact ray cast that it still
 discriminates, and drives the candidate through it. Only when the candidate fails is the
 baseline driven on the same placement, to tell a regression (the baseline is fine there) from a
-pre-existing failure (both fail); a regression is then driven again under further draws of the
-scan noise, and is marginal unless it holds under every one (`drives.redrawn`). The policy
+pre-existing failure (both fail); a regression is then driven again under further draws (fresh
+scan noise, the obstacle moved within a centimetre), and is marginal unless it holds under
+every one (`drives.redrawn`). The policy
 decides which of them fail the item; the re-drives count among the item's simulations. Runs
 come from the session's cache, so the shrinker revisiting a scenario costs nothing; after the
 first failure, new simulations are counted against the shrink budget.
@@ -14,6 +15,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from pytest_lasertest.model.draws import Draw
 from pytest_lasertest.model.policy import Classification, Policy, fails
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.model.verify import Placement, Scene, Verification, verify
@@ -56,7 +58,7 @@ class TrialResult:
 
     @property
     def classification(self) -> Classification:
-        """What the change did here, over every draw of the scan noise."""
+        """What the change did here, over every draw."""
         drive = self.drive
         return "unchanged" if drive is None else drive.classification
 
@@ -89,16 +91,15 @@ class Setting:
     cache: RunCache
 
     def scenario(
-        self, profile: LaserProfile, placement: Placement, noise: int | None = None
+        self, profile: LaserProfile, placement: Placement, draw: Draw | None = None
     ) -> Scenario:
         """One robot of the pair, carrying `profile`, past the placement's obstacle, with scan
-        noise from `noise` (the run's seed if None)."""
-        seed = self.seed if noise is None else noise
-        return scenario(self.spec, profile, (placement.obstacle,), seed)
+        noise from the run's seed, or as a further `draw` says."""
+        return scenario(self.spec, profile, (placement.obstacle,), self.seed, draw)
 
-    def drive(self, profile: LaserProfile, placement: Placement, noise: int | None = None) -> Run:
+    def drive(self, profile: LaserProfile, placement: Placement, draw: Draw | None = None) -> Run:
         """The run of `scenario`, through the session's cache."""
-        world = self.scenario(profile, placement, noise)
+        world = self.scenario(profile, placement, draw)
         return self.cache.run(world, self.controller, self.client)
 
 
@@ -140,14 +141,14 @@ class Trials:
 
     def trial(self, offset: Offset, placement: Placement) -> TrialResult:
         """Drive the candidate through the placement, the baseline if the candidate fails, and
-        both again under further noise draws if only the candidate failed."""
+        both again under further draws if only the candidate failed."""
         pair = self.setting.pair
         candidate = self._drive(pair.candidate.profile, placement)
         self._at_candidate = self.simulations
         baseline = None if candidate.passed else self._drive(pair.baseline.profile, placement)
 
-        def side(name: str, noise: int) -> Run:
-            return self._drive(getattr(pair, name).profile, placement, noise)
+        def side(name: str, draw: Draw) -> Run:
+            return self._drive(getattr(pair, name).profile, placement, draw)
 
         redrives = redrawn((candidate, baseline), side)
         verification = verify(self.scene, placement)
@@ -190,16 +191,16 @@ class Trials:
             return 0
         return self.simulations - self.simulations_to_failure
 
-    def _drive(self, profile: LaserProfile, placement: Placement, noise: int | None = None) -> Run:
+    def _drive(self, profile: LaserProfile, placement: Placement, draw: Draw | None = None) -> Run:
         setting = self.setting
-        if not setting.cache.knows(setting.scenario(profile, placement, noise), setting.controller):
+        if not setting.cache.knows(setting.scenario(profile, placement, draw), setting.controller):
             # The shrink budget bounds only what follows the first failure: without one, a budget
             # of 0 would refuse the first trial too.
             shrinking = self.simulations_to_failure is not None
             if shrinking and self.shrink_simulations >= self.shrink_budget:
                 raise Untested(BUDGET_SPENT)
             self.simulations += 1
-        return setting.drive(profile, placement, noise)
+        return setting.drive(profile, placement, draw)
 
 
 def noted_result(trials: Trials) -> TrialResult | None:

@@ -74,9 +74,11 @@ class Stuck:
     def describe(self) -> str:
         if self.time is None:
             return "never stuck"
+        # In mm, rounded down: a window that fell short by a hair must not read as enough.
+        progress = math.floor(self.least_progress * 1e4) / 10.0
         return (
-            f"stuck at t = {self.time:.2f} s: {self.least_progress:.2f} m of progress in "
-            f"{self.window:g} s, {self.distance:g} m needed"
+            f"stuck at t = {self.time:.2f} s: {progress:.1f} mm of progress in "
+            f"{self.window:g} s, {self.distance * 1000:g} mm needed"
         )
 
 

@@ -1,11 +1,13 @@
 """The policy's classes: how a trial's two runs are classified by which robots passed, and held
-under further draws of the scan noise; and which classes each policy fails."""
+under further draws (scan noise, obstacle positions); and which classes each policy fails."""
 
 from __future__ import annotations
 
 import pytest
 
-from pytest_lasertest.model.policy import REDRAWS, classify, fails
+from pytest_lasertest.model.draws import redraw
+from pytest_lasertest.model.obstacles import Cylinder
+from pytest_lasertest.model.policy import JITTER, REDRAWS, classify, fails
 from pytest_lasertest.model.seeds import noise_seed
 
 
@@ -63,3 +65,19 @@ def test_each_noise_draw_has_a_seed_of_its_own_and_the_first_is_the_runs() -> No
     assert len(set(seeds)) == len(seeds)
     assert all(0 <= seed < 2**32 for seed in seeds)
     assert noise_seed(8, 1) != seeds[1]
+
+
+def test_a_further_draw_is_the_same_on_every_call_and_moves_each_obstacle_within_a_centimetre() -> (
+    None
+):
+    draw = redraw(7, 1, 3)
+    assert draw == redraw(7, 1, 3)
+    assert draw.noise == noise_seed(7, 1)
+    assert len(draw.shifts) == 3
+    assert all(abs(move) <= JITTER for shift in draw.shifts for move in shift)
+    assert redraw(7, 2, 3).shifts != draw.shifts
+    moved = draw.moved((Cylinder(1.0, 2.0, 0.05, 0.5),) * 3)
+    assert [(obstacle.x - 1.0, obstacle.y - 2.0) for obstacle in moved] == [
+        pytest.approx(shift) for shift in draw.shifts
+    ]
+    assert {obstacle.sides for obstacle in moved} == {(0.1, 0.1)}

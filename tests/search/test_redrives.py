@@ -1,6 +1,7 @@
 """A regression survives the noise (`search/drives.py`): where the candidate alone fails, both
-robots drive again under further, independent draws of the scan noise, and the failure is a
-regression only if it holds under every one; else it is marginal."""
+robots drive again under further, independent draws (fresh scan noise, each obstacle moved
+within a centimetre), and the failure is a regression only if it holds under every one; else it
+is marginal. Its report shows each draw (`reports/drive.redrive_lines`)."""
 
 from __future__ import annotations
 
@@ -11,10 +12,12 @@ from typing import Any
 
 import pytest
 
-from pytest_lasertest.model.policy import REDRAWS
+from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
+from pytest_lasertest.model.policy import JITTER, REDRAWS
 from pytest_lasertest.model.seeds import noise_seed
 from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.pairsfile.controller import ControllerChoice
+from pytest_lasertest.reports.drive import redrive_lines
 from pytest_lasertest.search import drives
 from pytest_lasertest.search.drives import RunCache, drive_pair
 from pytest_lasertest.sim.oracles import Collision, Goal, Stuck, Verdicts
@@ -99,7 +102,10 @@ def test_only_a_failure_of_the_candidate_alone_is_driven_again(
     assert len(simulated) == 2
 
 
-def test_scanners_without_noise_are_not_driven_again(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_each_redraw_moves_every_obstacle_within_a_centimetre_for_both_robots_alike(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # Without scan noise too: a stack that marks 5 cm cells hides 1 mm of noise, not a move.
     quiet = dataclasses.replace(
         PAIR,
         baseline=dataclasses.replace(
@@ -109,18 +115,27 @@ def test_scanners_without_noise_are_not_driven_again(monkeypatch: pytest.MonkeyP
             PAIR.candidate, profile=dataclasses.replace(PAIR.candidate.profile, noise=None)
         ),
     )
-    draws = {0: (True, False)}
-    simulated: list[Scenario] = []
+    obstacles: tuple[Obstacle, ...] = (
+        Cylinder(4.0, 0.2, 0.05, 0.5),
+        Box(6.0, -0.3, 0.0, 0.2, 0.1, 0.5),
+    )
 
     def run_scenario(world: Scenario, factory: object, client: object) -> Any:
-        simulated.append(world)
-        return stand_in(world, draws[0][world.profile == quiet.candidate.profile])
+        return stand_in(world, world.profile != quiet.candidate.profile)
 
     monkeypatch.setattr(drives, "run_scenario", run_scenario)
-    drive = drive_pair(SPEC, quiet, (), SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
-    # Every draw would drive alike: the one drive decides.
+    drive = drive_pair(SPEC, quiet, obstacles, SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
     assert drive.classification == "regression"
-    assert len(simulated) == 2
+    assert len(drive.redrives) == REDRAWS
+    moves = set()
+    for again in drive.redrives:
+        assert again.baseline.scenario.obstacles == again.candidate.scenario.obstacles
+        for before, after in zip(obstacles, again.candidate.scenario.obstacles, strict=True):
+            move = (after.x - before.x, after.y - before.y)
+            assert max(abs(move[0]), abs(move[1])) <= JITTER + 1e-6
+            assert (after.sides, after.height) == (before.sides, before.height)
+            moves.add(move)
+    assert len(moves) == len(obstacles) * REDRAWS  # every obstacle of every draw moves its own way
 
 
 def test_a_baseline_that_passes_by_less_than_a_centimetre_makes_the_failure_marginal(
@@ -139,3 +154,36 @@ def test_a_baseline_that_passes_by_less_than_a_centimetre_makes_the_failure_marg
     # A near miss is marginal whatever further draws do: none is driven.
     assert len(simulated) == 2
     assert drives.near_misses(drive.baseline, drive.candidate) == [("collision", 0.004)]
+
+
+def test_a_regressions_report_shows_each_draw_with_its_seed_move_and_both_margins(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    simulate(monkeypatch, dict.fromkeys(range(REDRAWS + 1), (True, False)))
+    obstacle = (Cylinder(4.0, 0.2, 0.05, 0.5),)
+    drive = drive_pair(SPEC, PAIR, obstacle, SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
+    lines = redrive_lines(drive)
+    assert lines[0] == (
+        "  re-driven  under 2 further draws (fresh scan noise, each obstacle moved within 10 mm); "
+        "the failure held under each:"
+    )
+    for number, (line, again) in enumerate(zip(lines[1:], drive.redrives, strict=True), start=1):
+        assert again.draw is not None
+        dx, dy = again.draw.shifts[0]
+        assert line.startswith(
+            f"    draw {number}   seed {noise_seed(SEED, number)}, obstacle moved "
+            f"({dx * 1000:+.1f}, {dy * 1000:+.1f}) mm: baseline passed, margins collision 300.0"
+        )
+        assert "candidate FAILED (collision, goal), margins collision -1.0" in line
+
+
+def test_a_marginal_failures_report_says_which_draw_undid_it(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    simulate(monkeypatch, {0: (True, False), 1: (True, True), 2: (True, False)})
+    drive = drive_pair(SPEC, PAIR, (), SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
+    lines = redrive_lines(drive)
+    assert lines[0].endswith("the failure did not hold under every:")
+    assert lines[0].startswith("  re-driven  under 1 further draw (")
+    assert "baseline passed" in lines[1]
+    assert "candidate passed" in lines[1]

@@ -8,7 +8,7 @@ import math
 import pytest
 
 from pytest_lasertest.model.geometry import Point2D
-from pytest_lasertest.sim.oracles import Referee, Rules
+from pytest_lasertest.sim.oracles import Referee, Rules, Stuck
 
 ORIGIN = Point2D(0.0, 0.0)
 GOAL = (Point2D(10.0, 0.0),)
@@ -55,3 +55,10 @@ def test_the_referee_says_the_goal_is_reached_within_its_tolerance() -> None:
     goal = referee.verdicts().goal
     assert goal.passed
     assert goal.margin == pytest.approx(0.05)
+
+
+def test_a_stuck_verdict_shows_its_progress_to_the_millimetre_so_it_never_reads_as_enough() -> None:
+    stuck = Stuck(time=38.5, least_progress=0.09999, distance=0.1, window=30.0)
+    assert stuck.describe() == "stuck at t = 38.50 s: 99.9 mm of progress in 30 s, 100 mm needed"
+    stuck = Stuck(time=38.5, least_progress=0.0937, distance=0.1, window=30.0)
+    assert stuck.describe() == "stuck at t = 38.50 s: 93.7 mm of progress in 30 s, 100 mm needed"

@@ -1,0 +1,62 @@
+"""Every command output README.md and docs/ show is what the command prints today.
+
+Sybil reads the Markdown (`shown.py` says which blocks it takes and how it compares them). Each
+document's commands run in order, in a scratch directory of its own, on one xdist worker: the
+README's test command distributes with `--dist loadgroup`, and each document is one group, so
+that the tutorial's replay finds the artifacts its run wrote. A test run alone (`-k`) first runs
+the commands its document shows before it.
+"""
+
+from __future__ import annotations
+
+import pytest
+from sybil import Example
+
+from tests.docs.shown import (
+    DOCUMENTS,
+    examples,
+    replay,
+    scratch_directory,
+    unchecked_text_blocks,
+)
+from tests.helpers import REPO
+
+
+def _params() -> list[object]:
+    params: list[object] = []
+    for path in DOCUMENTS:
+        name = str(path.relative_to(REPO))
+        for example in examples(path):
+            group = pytest.mark.xdist_group(name)
+            params.append(pytest.param(example, id=f"{name}:{example.line}", marks=group))
+    return params
+
+
+@pytest.mark.parametrize("example", _params())
+def test_the_docs_show_what_each_command_prints(
+    example: Example, tmp_path_factory: pytest.TempPathFactory
+) -> None:
+    namespace = example.namespace
+    if "cwd" not in namespace:
+        namespace["cwd"] = scratch_directory(tmp_path_factory.mktemp("my_robot"))
+        namespace["done"] = set()
+    done: set[int] = namespace["done"]
+    for earlier in example.document.examples():
+        if earlier.start >= example.start:
+            break
+        if earlier.start not in done:  # run alone: what its page did before it first
+            replay(earlier)
+            done.add(earlier.start)
+    done.add(example.start)
+    example.evaluate()
+
+
+def test_every_output_block_of_the_docs_is_checked() -> None:
+    # A block that shows a command's output but is neither a `$` session nor marked would go
+    # stale unseen: every `text` block must be one of them.
+    unchecked = [
+        f"{path.relative_to(REPO)}:{line}"
+        for path in DOCUMENTS
+        for line in unchecked_text_blocks(path)
+    ]
+    assert unchecked == []
