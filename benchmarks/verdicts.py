@@ -10,13 +10,16 @@ replays another's failures), reads each run's JUnit XML, and prints for each fil
 then, for each item whose outcome changes, its outcome under each seed (F failed, . passed,
 s skipped, p pre-existing, m marginal, c coverage-loss); and last
 
-    seed-dependent items: K of N; failing items: F (under every seed: A)
+    items whose outcome changes between runs: K of N; failing items: F (in every run: A)
 
 Give `--policy candidate` for the verdict before `regression` was the default, and `--pytest`
 to run another checkout's code (a worktree of an older commit: its virtualenv's pytest).
+`--ci RUNS` runs each file RUNS times as a CI service does instead (`CI=true`, no `--laser-seed`
+or `--laser-profile`: each file's seed comes from its path, the profile is ci), to show that the
+same commit gives the same verdict: no item may change between the runs.
 
-    python benchmarks/verdicts.py [FILE ...] [--seeds 0-7] [--workers 2] [--policy regression]
-                                  [--pytest .venv/bin/pytest] [-k EXPRESSION]
+    python benchmarks/verdicts.py [FILE ...] [--seeds 0-7 | --ci RUNS] [--workers 2]
+                                  [--policy regression] [--pytest .venv/bin/pytest] [-k EXPRESSION]
 
 Without FILE, the harmless changes of tests/data/harmless/ (move_base and Nav2), which must
 pass under every seed.
@@ -25,6 +28,7 @@ pass under every seed.
 from __future__ import annotations
 
 import argparse
+import os
 import shutil
 import subprocess
 import sys
@@ -51,7 +55,7 @@ class Sweep:
     """Each item's outcome letter under each seed, for one pairs file."""
 
     file: str
-    seeds: tuple[int, ...]
+    seeds: tuple[int | None, ...]  # None: a run as on a CI service
     outcomes: dict[str, tuple[str, ...]]  # item -> one letter per seed
 
     def changing(self) -> list[str]:
@@ -95,8 +99,11 @@ class Runs:
     policy: str
     select: str | None  # -k
 
-    def command(self, file: str, seed: int, report: Path) -> list[str]:
-        command = [self.pytest, file, f"--laser-seed={seed}", "--laser-profile=ci"]
+    def command(self, file: str, seed: int | None, report: Path) -> list[str]:
+        """The run of `file` under `seed`; as on a CI service where `seed` is None."""
+        command = [self.pytest, file]
+        if seed is not None:
+            command += [f"--laser-seed={seed}", "--laser-profile=ci"]
         command += ["-p", "no:randomly", "-p", "no:cacheprovider", "-q"]
         command += [f"--laser-policy={self.policy}", f"--junitxml={report}"]
         if self.workers > 1:
@@ -104,25 +111,33 @@ class Runs:
         return command + (["-k", self.select] if self.select else [])
 
 
-def run(runs: Runs, file: str, seed: int) -> dict[str, str]:
-    """One run of `file` under `seed`: each item's outcome letter."""
+def run(runs: Runs, file: str, seed: int | None) -> dict[str, str]:
+    """One run of `file` under `seed` (as on a CI service if None): each item's outcome letter."""
     tree = runs.tree
     shutil.rmtree(tree / ".hypothesis", ignore_errors=True)
     report = tree / "verdicts.xml"
     command = runs.command(file, seed, report)
+    environment = {key: value for key, value in os.environ.items() if key != "CI"}
+    if seed is None:
+        environment["CI"] = "true"
     started = time.perf_counter()
-    subprocess.run(command, cwd=tree, capture_output=True, check=False)
+    done = subprocess.run(command, cwd=tree, env=environment, capture_output=True, check=False)
     cases = ET.parse(report).iter("testcase")
     outcomes = {str(case.get("name")): letter(case) for case in cases}
     # Progress, on stderr: a sweep of eight seeds takes the better part of an hour.
     letters = "".join(sorted(outcomes.values()))
     seconds = time.perf_counter() - started
-    print(f"{file} seed {seed}: {letters} ({seconds:.0f} s)", file=sys.stderr, flush=True)
+    how = f"seed {seed}" if seed is not None else "as on CI"
+    print(
+        f"{file} {how}: {letters}, exit status {done.returncode} ({seconds:.0f} s)",
+        file=sys.stderr,
+        flush=True,
+    )
     return outcomes
 
 
-def sweep(runs: Runs, file: str, seeds: Sequence[int]) -> Sweep:
-    """`file` under each seed."""
+def sweep(runs: Runs, file: str, seeds: Sequence[int | None]) -> Sweep:
+    """`file` under each seed (None: as on a CI service)."""
     by_seed = [run(runs, file, seed) for seed in seeds]
     items = sorted(set().union(*by_seed))
     outcomes = {item: tuple(runs.get(item, "-") for runs in by_seed) for item in items}
@@ -144,6 +159,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("files", nargs="*", default=list(HARMLESS))
     parser.add_argument("--seeds", type=seeds_from, default=tuple(range(8)))
+    parser.add_argument("--ci", type=int, default=0, metavar="RUNS", help="run as CI does")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--policy", default="regression")
     parser.add_argument("--pytest", default=str(REPO / ".venv" / "bin" / "pytest"))
@@ -152,7 +168,8 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as scratch:
         tree = checkout(Path(scratch))
         runs = Runs(args.pytest, tree, args.workers, args.policy, args.select)
-        sweeps = [sweep(runs, file, args.seeds) for file in args.files]
+        seeds = (None,) * args.ci if args.ci else args.seeds
+        sweeps = [sweep(runs, file, seeds) for file in args.files]
     for done in sweeps:
         print("\n".join(report(done)))
     total = sum(len(done.outcomes) for done in sweeps)
@@ -160,8 +177,8 @@ def main() -> None:
     failing = sum(len(done.failing(every=False)) for done in sweeps)
     always = sum(len(done.failing(every=True)) for done in sweeps)
     print(
-        f"seed-dependent items: {changing} of {total}; failing items: {failing} "
-        f"(under every seed: {always})"
+        f"items whose outcome changes between runs: {changing} of {total}; "
+        f"failing items: {failing} (in every run: {always})"
     )
 
 

@@ -6,9 +6,9 @@ not decide it: the scan noise, and where within `JITTER` each obstacle stands (`
 A failure decided by a millimetre of progress, or by which costmap cell an obstacle's edge falls
 in, flips with such a draw, and a gate that fails on such a flip is a gate teams switch off. One
 that does not hold under every draw is *marginal*; so is one where the baseline passed the
-oracle the candidate failed by less than `NEAR_MISS` (a collision missed by 4 mm, say): both
-robots came within a centimetre of the same failure, and which side of it each ended on says
-nothing about the change. Every item decides with `fails`: under the `regression` policy (the
+collision or the stuck oracle by less than `NEAR_MISS` (a collision missed by 4 mm, say): both
+robots came within a centimetre of failing, and which side of it each ended on says nothing
+about the change. Every item decides with `fails`: under the `regression` policy (the
 default) only a regression fails it; under `candidate` any failure of the candidate does,
 marginal and pre-existing ones included.
 """
@@ -33,9 +33,11 @@ REDRAWS = 2
 # every noise draw yet passed 7 of 10 placements within a centimetre of it, while the baseline
 # failed 2 of them. A centimetre is also about how well a placed obstacle's position is known.
 JITTER = 0.01
-# m: the least margin by which the baseline must pass the collision or stuck oracle that the
-# candidate failed, in every draw, for the failure to be the change's. A centimetre: the order
-# of the catalogue scanners' noise (sigma 10-20 mm), far above PyBullet's contact slop (~1 mm).
+# m: the least margin by which the baseline must pass the collision and the stuck oracle, in
+# every draw, for a failure of the candidate to be the change's, whichever oracle it failed (on
+# a harmless swap under move_base the baseline grazed a pole with 2 mm to spare while the
+# candidate got stuck beside it). A centimetre: the order of the catalogue scanners' noise
+# (sigma 10-20 mm), far above PyBullet's contact slop (~1 mm).
 NEAR_MISS = 0.01
 # The oracles whose margin says how near the baseline came to failing them. Not the goal's: a
 # robot stops as soon as it is within the goal tolerance, so every passing run's goal margin is

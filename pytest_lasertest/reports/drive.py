@@ -92,7 +92,7 @@ def redrive_lines(drive: PairDrive) -> list[str]:
     the obstacles, and both robots' outcomes with their margins)."""
     lines = [
         f"  near miss  draw {draw}: the baseline passed {name} by only {margin * 1000:.1f} mm "
-        f"(under {NEAR_MISS * 1000:.0f} mm): both robots came that near the same failure"
+        f"(under {NEAR_MISS * 1000:.0f} mm): it came that near failing too"
         for draw, again in enumerate(drive.draws)
         for name, margin in near_misses(again.baseline, again.candidate)
     ]

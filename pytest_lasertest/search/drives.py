@@ -67,16 +67,15 @@ class PairDrive:
 
 
 def near_misses(baseline: Run, candidate: Run) -> list[tuple[str, float]]:
-    """The oracles (collision, stuck) the candidate failed and the baseline passed by less than
-    `NEAR_MISS`, each with the baseline's margin (m)."""
-    verdicts = dict(baseline.verdicts.named())
+    """Where the candidate failed, the oracles (collision, stuck) the baseline passed by less
+    than `NEAR_MISS`, each with the baseline's margin (m): whichever oracle the candidate
+    failed, a baseline that came within a centimetre of failing passed by luck."""
+    if candidate.passed:
+        return []
     return [
-        (name, verdicts[name].margin)
-        for name, verdict in candidate.verdicts.named()
-        if name in NEAR_MISS_ORACLES
-        and not verdict.passed
-        and verdicts[name].passed
-        and verdicts[name].margin < NEAR_MISS
+        (name, verdict.margin)
+        for name, verdict in baseline.verdicts.named()
+        if name in NEAR_MISS_ORACLES and verdict.passed and verdict.margin < NEAR_MISS
     ]
 
 

@@ -163,5 +163,15 @@ def test_the_verdicts_benchmark_compares_each_item_across_seeds() -> None:
     assert lines == [
         f"{harmless}: 3 items; 0 change with the seed; failed under every seed: none; "
         "under some: none",
-        "seed-dependent items: 0 of 3; failing items: 0 (under every seed: 0)",
+        "items whose outcome changes between runs: 0 of 3; failing items: 0 (in every run: 0)",
     ]
+
+
+def test_the_verdicts_benchmark_runs_a_file_twice_as_ci_does() -> None:
+    harmless = "tests/data/harmless/move_base.lasertest.yaml"
+    lines = printed(
+        "benchmarks/verdicts.py", harmless, "--ci", "2", "--workers", "1", "-k", "coverage"
+    )
+    assert lines[-1] == (
+        "items whose outcome changes between runs: 0 of 3; failing items: 0 (in every run: 0)"
+    )

@@ -16,15 +16,14 @@ from tests.helpers import EXAMPLES
 from tests.helpers.git import commit_everything
 from tests.helpers.runs import controllers, junit_cases, outcomes
 
-# Each driver case of examples/drivers: the pair that fails for it at its `avoid-0`, and the
-# driver trait its report blames (none for the raised range_min, which is no driver's).
+# Each driver case of examples/drivers that fails as a regression at its `avoid-0`, and the
+# driver trait its report blames. The no-return published as 0.0 and the raised range_min fail
+# there only by a millimetre of progress: marginal (see NOTED).
 DRIVER_CASES = (
     ("no_return_nan.lasertest.yaml::nan", "no_return"),
-    ("no_return_zero.lasertest.yaml::zero", "no_return"),
     ("no_return_range_max.lasertest.yaml::range_max", "no_return"),
     ("range_max_per_scan.lasertest.yaml::range_max_per_scan", "range_max"),
     ("reversed_beams.lasertest.yaml::reversed_beams", "beam_order"),
-    ("raised_range_min.lasertest.yaml::raised_range_min", None),
     ("late_stamp.lasertest.yaml::late_stamp", "latency"),
 )
 
@@ -38,9 +37,6 @@ REGRESSIONS = {
     # A 0.4 m pole beside the route, which the 32-beam robot reads with two beams and passes,
     # and the 16-beam robot with one, stopping beside it until the stuck oracle fires.
     "examples/paper.lasertest.yaml::size[avoid-1]": "one beam on a pole",
-    # A pole beside the first leg: the robot that sees +-1 rad gets stuck beside it, the one
-    # that sees +-1.57 rad passes. The difference is in what the stack makes of the narrower scan.
-    "examples/turning.lasertest.yaml::blind_spot_turning[avoid-0]": "narrower field of view",
     # Under Nav2 with Clearpath's A200 parameters: the cheaper SICK mounted 10 cm higher, at
     # 15 Hz, gets stuck at poles beside the route the LMS111's robot passes, and drives into an
     # obstacle below its raised scan plane.
@@ -61,9 +57,6 @@ REGRESSIONS = {
     "examples/drivers/raised_range_min.lasertest.yaml::raised_range_min[candidate-misses-0]": (
         "read nearer than range_min"
     ),
-    # The Jackal squeezing through the doorway meets a 5 cm pole 0.4 m past it with the LMS111
-    # and passes it with the UST-10LX.
-    "examples/worlds/doorway.lasertest.yaml::lms111_to_ust10lx[avoid-0]": "doorway pole",
 }
 # Failures that do not fail the run, each its own outcome in JUnit XML (`lasertest.outcome`).
 NOTED = {
@@ -87,6 +80,30 @@ NOTED = {
     # A 5 cm box 0.5 m ahead of the Jackal's start, below the LMS111's 0.5 m minimum range: the
     # LMS111's robot drives into it at once, the UST-10LX's is held, then turns into it.
     "examples/worlds/doorway.lasertest.yaml::lms111_to_ust10lx[baseline-misses-0]": "pre-existing",
+    # The cheaper, raised SICK under Nav2: poles close beside the route hold both robots.
+    **dict.fromkeys(
+        (
+            "examples/husky.lasertest.yaml::lms111_to_tim571_raised[avoid-0]",
+            "examples/husky.lasertest.yaml::lms111_to_tim571_raised[baseline-misses-0]",
+            "examples/husky.lasertest.yaml::lms111_to_tim571_raised[candidate-misses-1]",
+        ),
+        "pre-existing",
+    ),
+    # Marginal: the candidate fails where the baseline passes, but a further draw (fresh noise,
+    # the obstacle moved within 1 cm) undoes it. Each is decided by a millimetre: a robot stuck
+    # with 98.8-98.9 mm of progress in 10 s where 100 mm are needed (the narrower field of view
+    # on the turning route, the no-return published as 0.0, the raised range_min), a collision
+    # by less than 0.1 mm (the doorway's pole), or a 5 cm box the 16-beam robot touches.
+    **dict.fromkeys(
+        (
+            "examples/turning.lasertest.yaml::blind_spot_turning[avoid-0]",
+            "examples/drivers/no_return_zero.lasertest.yaml::zero[avoid-0]",
+            "examples/drivers/raised_range_min.lasertest.yaml::raised_range_min[avoid-0]",
+            "examples/worlds/doorway.lasertest.yaml::lms111_to_ust10lx[avoid-0]",
+            "examples/paper.lasertest.yaml::size[candidate-misses-2]",
+        ),
+        "marginal",
+    ),
 }
 # The pairs whose candidate scans less (`coverage-loss`, which fails no run by default).
 COVERAGE_LOSSES = (

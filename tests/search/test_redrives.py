@@ -187,3 +187,33 @@ def test_a_marginal_failures_report_says_which_draw_undid_it(
     assert lines[0].startswith("  re-driven  under 1 further draw (")
     assert "baseline passed" in lines[1]
     assert "candidate passed" in lines[1]
+
+
+def test_a_baseline_that_grazes_the_obstacle_makes_a_candidate_stuck_beside_it_marginal(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # A harmless swap under move_base: the baseline passed a pole with 2 mm to spare, and the
+    # candidate, clear of it, was held beside it: a near miss of another oracle is one too.
+    def run_scenario(world: Scenario, factory: object, client: object) -> Any:
+        if world.profile != PAIR.candidate.profile:
+            return stand_in(world, True, clearance=0.002)
+        verdicts = Verdicts(
+            Collision(None, 0.036), Stuck(29.76, 0.092, 0.1, 10.0), Goal(None, 2.46, 0.2)
+        )
+        return SimpleNamespace(passed=False, scenario=world, verdicts=verdicts)
+
+    monkeypatch.setattr(drives, "run_scenario", run_scenario)
+    drive = drive_pair(SPEC, PAIR, (), SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
+    assert drive.classification == "marginal"
+    assert drives.near_misses(drive.baseline, drive.candidate) == [("collision", 0.002)]
+    assert redrive_lines(drive) == [
+        "  near miss  draw 0: the baseline passed collision by only 2.0 mm (under 10 mm): it came "
+        "that near failing too"
+    ]
+
+
+def test_a_candidate_that_passes_has_no_near_miss_to_show(monkeypatch: pytest.MonkeyPatch) -> None:
+    simulate(monkeypatch, {0: (True, True)})
+    drive = drive_pair(SPEC, PAIR, (), SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
+    grazing = stand_in(drive.baseline.scenario, True, clearance=0.002)
+    assert drives.near_misses(grazing, drive.candidate) == []
