@@ -29,7 +29,7 @@ from tests.helpers.texts import SIZE_PAIR
 
 COVERAGE_JSON = "out/gate.lasertest.yaml/to_lms111_coverage.json"
 # The paper's pole that the 16-beam robot fails at: a placement item with all four artifacts.
-PLACEMENT = ("-k", "size and candidate-misses-2", "--laser-seed=1", "--laser-profile=ci")
+PLACEMENT = ("-k", "size and candidate-misses-2", "--laser-seed=2", "--laser-profile=ci")
 ROOT = os.geteuid() == 0
 AS_ROOT = "root writes to any directory whatever its mode"
 

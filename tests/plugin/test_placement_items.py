@@ -237,7 +237,7 @@ def test_a_failing_item_writes_a_picture_a_repro_a_gazebo_world_every_number_and
     assert len(world.findall("./world/model")) == 2  # the ground and the obstacle
     evidence = json.loads((ARTIFACTS / f"{stem}.json").read_text())
     assert evidence["classification"] == "regression"
-    assert evidence["offset"]["x"] > 0.0
+    assert evidence["offset"]["x"] == pytest.approx(-0.043, abs=0.001)  # moved along the route
     assert evidence["baseline"]["passed"] is True
     assert evidence["candidate"]["verdicts"]["collision"]["passed"] is False
     assert evidence["seed"] == 1
