@@ -69,28 +69,35 @@ def examples(path: Path) -> list[Example]:
 
 def parse(document: Document) -> Iterable[Region]:
     """Sybil's parser: a region for each block to check."""
-    for region in FENCES(document):
-        source, language = str(region.lexemes["source"]), region.lexemes["language"]
-        directive = _directive_before(document.text, region.start)
-        if directive is not None and directive[0] == "shown-file":
-            yield Region(region.start, region.end, SavedFile(directive[1], source), _save)
-        elif directive is not None and directive[0] == "shown-output":
-            yield Region(region.start, region.end, [Shown(directive[1], source, False)], _check)
-        elif language in OUTPUT_LANGUAGES and source.startswith("$ "):
-            yield Region(region.start, region.end, _session(source), _check)
+    for block in FENCES(document):
+        region = _checked(document, block)
+        if region is not None:
+            yield region
 
 
 def unchecked_text_blocks(path: Path) -> list[int]:
-    """The lines of the output blocks of a page that nothing checks."""
+    """The lines of the output blocks of a page that nothing checks or marks as a sketch."""
     document = Document(path.read_text(), str(path))
-    lines = []
-    for region in FENCES(document):
-        source, language = str(region.lexemes["source"]), region.lexemes["language"]
-        if language not in OUTPUT_LANGUAGES or source.startswith("$ "):
-            continue
-        if _directive_before(document.text, region.start) is None:
-            lines.append(document.text.count("\n", 0, region.start) + 1)
-    return lines
+    return [
+        document.text.count("\n", 0, block.start) + 1
+        for block in FENCES(document)
+        if block.lexemes["language"] in OUTPUT_LANGUAGES
+        and _checked(document, block) is None
+        and _directive_before(document.text, block.start) is None
+    ]
+
+
+def _checked(document: Document, block: Region) -> Region | None:
+    """The region that checks a fenced block, if it is one to check."""
+    source, language = str(block.lexemes["source"]), block.lexemes["language"]
+    directive = _directive_before(document.text, block.start)
+    if directive is not None and directive[0] == "shown-file":
+        return Region(block.start, block.end, SavedFile(directive[1], source), _save)
+    if directive is not None and directive[0] == "shown-output":
+        return Region(block.start, block.end, [Shown(directive[1], source, False)], _check)
+    if language in OUTPUT_LANGUAGES and source.startswith("$ "):
+        return Region(block.start, block.end, _session(source), _check)
+    return None
 
 
 def scratch_directory(path: Path) -> Path:
