@@ -14,7 +14,8 @@ rejects; it raises any other exception for a failure, and returns the event to c
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, cast
@@ -104,7 +105,7 @@ def search(
         event(outcome)
 
     # Hypothesis hands each test's statistics to the collector's current callback.
-    with cast(Any, collector).with_value(found.append):
+    with cast(Any, collector).with_value(found.append), _without_local_constants():
         try:
             probe()
         except failing as failure:
@@ -112,6 +113,34 @@ def search(
         except Unsatisfiable:
             pass  # every draw was rejected: the trial counted them, and nothing failed
     return SearchOutcome(None, _described(found, key))
+
+
+@contextmanager
+def _without_local_constants() -> Iterator[None]:
+    """Hypothesis (from 6.131.1) draws some numbers from the constants of every local module
+    the process has imported so far, and which modules those are depends on what ran before in
+    the process: a Nav2 item before a move_base one, pytest-xdist's distribution, a team's
+    conftest. The same seed must try the same offsets in any process, so the search draws
+    without them (the constants Hypothesis ships stay). This reaches into Hypothesis's internals
+    because no setting turns them off (read at 6.170); the search's tests fail if that changes."""
+    try:
+        from hypothesis.internal.conjecture import providers
+        from hypothesis.internal.constants_ast import Constants
+    except ImportError:  # an older Hypothesis, which reads no local constants
+        yield
+        return
+    local = getattr(providers, "_get_local_constants", None)
+    if local is None:  # likewise
+        yield
+        return
+    none = Constants()
+    providers._get_local_constants = lambda: none
+    providers.CONSTANTS_CACHE.cache.clear()  # it holds the pools it drew from before
+    try:
+        yield
+    finally:
+        providers._get_local_constants = local
+        providers.CONSTANTS_CACHE.cache.clear()
 
 
 def _settings(budget: Budget, key: str, database: Path | None) -> settings:

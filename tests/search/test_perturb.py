@@ -130,3 +130,20 @@ def test_a_search_whose_every_draw_is_rejected_ends_without_a_failure() -> None:
 
     outcome = search(BOX, refuse, Failed, BUDGET, key="item", seed=0, database=None)
     assert outcome.failure is None
+
+
+def test_the_same_seed_tries_the_same_offsets_whatever_modules_the_process_imported(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Hypothesis draws some floats from constants it reads in every local module imported so
+    # far; which those are depends on what ran before in the process (Nav2 before move_base,
+    # pytest-xdist's distribution). A module full of constants inside the box must change nothing.
+    before = Recorder(threshold=1.0)
+    run(before, seed=3)
+    constants = ", ".join(f"{0.001 * k:.3f}" for k in range(1, 100))
+    (tmp_path / "lasertest_constants_probe.py").write_text(f"VALUES = ({constants})\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    __import__("lasertest_constants_probe")
+    after = Recorder(threshold=1.0)
+    run(after, seed=3)
+    assert after.seen == before.seen
