@@ -99,10 +99,10 @@ def redrive_lines(drive: PairDrive) -> list[str]:
     redrives, classification = drive.redrives, drive.classification
     if not redrives:
         return lines
-    held = "held under each" if classification == "regression" else "did not hold under every"
+    held = "held under all" if classification == "regression" else "did not hold under all"
     lines.append(
         f"  re-driven  under {_draws(len(redrives))} (fresh scan noise, each obstacle moved "
-        f"within {JITTER * 1000:.0f} mm); the failure {held}:"
+        f"within {JITTER * 1000:.0f} mm); the failure {held} of them:"
     )
     for number, again in enumerate(redrives, start=1):
         assert again.draw is not None  # `drives.redrawn` records every re-drive's draw

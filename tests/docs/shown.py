@@ -125,10 +125,16 @@ def _session(source: str) -> list[Shown]:
 
 
 def replay(example: Example) -> None:
-    """What `example` does to its document's directory, unchecked: a test run alone first
-    replays the examples before it, whose own tests check them."""
+    """What `example` does to its document's directory, unchecked, once: a test run alone
+    first replays the examples before it, whose own tests check them. Once only, because a
+    second run of a gate in the same directory replays the failures the first one stored."""
+    done: set[int] = example.namespace.setdefault("done", set())
+    if example.start in done:
+        return
+    done.add(example.start)
     if isinstance(example.parsed, SavedFile):
-        _save(example)
+        saved: SavedFile = example.parsed
+        (example.namespace["cwd"] / saved.name).write_text(saved.text)
         return
     outputs: dict[str, str] = example.namespace.setdefault("outputs", {})
     for shown in example.parsed:
@@ -137,8 +143,7 @@ def replay(example: Example) -> None:
 
 
 def _save(example: Example) -> None:
-    saved: SavedFile = example.parsed
-    (example.namespace["cwd"] / saved.name).write_text(saved.text)
+    replay(example)
 
 
 def _check(example: Example) -> str | None:

@@ -1,8 +1,8 @@
 """The driver examples under Nav2 (Clearpath's A200 parameters without a map), as their README
-says: a no-return published as NaN, 0.0 or range_max, a per-scan range_max and a reversed beam
-order each fail as a regression, for their trait, and their fixed variants fail nothing (both
-robots stop at the pole: pre-existing). Under move_base they run in the main job
-(test_examples.py)."""
+says: a no-return published as NaN or range_max, a per-scan range_max and a reversed beam order
+each fail as a regression, for their trait; a no-return published as 0.0 fails as a marginal
+failure; and their fixed variants fail nothing (both robots stop at the pole: pre-existing).
+Under move_base they run in the main job (test_examples.py)."""
 
 from __future__ import annotations
 
@@ -14,11 +14,12 @@ from tests.helpers import EXAMPLES
 
 CASES = {
     "no_return_nan.lasertest.yaml": ("nan", "no_return"),
-    "no_return_zero.lasertest.yaml": ("zero", "no_return"),
     "no_return_range_max.lasertest.yaml": ("range_max", "no_return"),
     "range_max_per_scan.lasertest.yaml": ("range_max_per_scan", "range_max"),
     "reversed_beams.lasertest.yaml": ("reversed_beams", "beam_order"),
 }
+# Held beside the pole by 8.5 mm of progress in 30 s; with the pole moved within 1 cm it passes.
+MARGINAL = {"no_return_zero.lasertest.yaml": "zero"}
 UNDER_NAV2 = "controller: nav2\nnavigation:\n  nav2: a200_no_map.nav2.yaml"
 
 
@@ -27,12 +28,13 @@ def test_each_driver_case_fails_under_nav2_without_a_map_and_its_fix_passes(
 ) -> None:
     drivers = EXAMPLES / "drivers"
     shutil.copy(drivers / "a200_no_map.nav2.yaml", pytester.path)
-    for name in CASES:
+    for name in [*CASES, *MARGINAL]:
         text = (drivers / name).read_text()
         assert text.count("controller: move_base") == 1
         (pytester.path / name).write_text(text.replace("controller: move_base", UNDER_NAV2))
     result = pytester.runpytest_subprocess(
         *CASES,
+        *MARGINAL,
         "-rA",
         "--laser-seed=1",
         "--laser-profile=ci",
@@ -53,9 +55,11 @@ def test_each_driver_case_fails_under_nav2_without_a_map_and_its_fix_passes(
                 f"  driver     passes with the baseline's {trait} (*): the failure comes from *",
             ]
         )
-    assert not_failing(result) >= {
-        f"{name}::{pair}_fixed[avoid-0]" for name, (pair, _) in CASES.items()
-    }
+    result.stdout.fnmatch_lines(
+        [f"MARGINAL *{name}::{pair}[[]avoid-0[]]: *" for name, pair in MARGINAL.items()]
+    )
+    fixed = [(name, pair) for name, (pair, _) in CASES.items()] + list(MARGINAL.items())
+    assert not_failing(result) >= {f"{name}::{pair}_fixed[avoid-0]" for name, pair in fixed}
 
 
 def not_failing(result: pytest.RunResult) -> set[str]:

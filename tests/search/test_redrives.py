@@ -165,7 +165,7 @@ def test_a_regressions_report_shows_each_draw_with_its_seed_move_and_both_margin
     lines = redrive_lines(drive)
     assert lines[0] == (
         "  re-driven  under 2 further draws (fresh scan noise, each obstacle moved within 10 mm); "
-        "the failure held under each:"
+        "the failure held under all of them:"
     )
     for number, (line, again) in enumerate(zip(lines[1:], drive.redrives, strict=True), start=1):
         assert again.draw is not None
@@ -183,7 +183,7 @@ def test_a_marginal_failures_report_says_which_draw_undid_it(
     simulate(monkeypatch, {0: (True, False), 1: (True, True), 2: (True, False)})
     drive = drive_pair(SPEC, PAIR, (), SEED, CHOICE, None, RunCache())  # type: ignore[arg-type]
     lines = redrive_lines(drive)
-    assert lines[0].endswith("the failure did not hold under every:")
+    assert lines[0].endswith("the failure did not hold under all of them:")
     assert lines[0].startswith("  re-driven  under 1 further draw (")
     assert "baseline passed" in lines[1]
     assert "candidate passed" in lines[1]
