@@ -8,7 +8,8 @@ scan noise, the obstacle moved within a centimetre), and is marginal unless it h
 every one (`drives.redrawn`). The policy
 decides which of them fail the item; the re-drives count among the item's simulations. Runs
 come from the session's cache, so the shrinker revisiting a scenario costs nothing; after the
-first failure, new simulations are counted against the shrink budget.
+first failure, the search's new scenarios are counted against the shrink budget, whether or not
+another item of the process drove them before.
 """
 
 from __future__ import annotations
@@ -119,6 +120,9 @@ class Trials:
     results: dict[Offset, TrialResult] = field(default_factory=dict, init=False)
     rejections: set[Offset] = field(default_factory=set, init=False)
     _at_candidate: int = field(default=0, init=False)  # simulations up to the last candidate run
+    # Scenarios this search drove, from the cache or not: what other items of the process cached
+    # must not change how far this one's budget goes (xdist's distribution, a -k selection).
+    _driven: set[Scenario] = field(default_factory=set, init=False)
 
     def __call__(self, offset: Offset) -> str:
         placement = perturbed(self.witness, offset)
@@ -192,15 +196,16 @@ class Trials:
         return self.simulations - self.simulations_to_failure
 
     def _drive(self, profile: LaserProfile, placement: Placement, draw: Draw | None = None) -> Run:
-        setting = self.setting
-        if not setting.cache.knows(setting.scenario(profile, placement, draw), setting.controller):
+        world = self.setting.scenario(profile, placement, draw)
+        if world not in self._driven:
             # The shrink budget bounds only what follows the first failure: without one, a budget
             # of 0 would refuse the first trial too.
             shrinking = self.simulations_to_failure is not None
             if shrinking and self.shrink_simulations >= self.shrink_budget:
                 raise Untested(BUDGET_SPENT)
             self.simulations += 1
-        return setting.drive(profile, placement, draw)
+            self._driven.add(world)
+        return self.setting.cache.run(world, self.setting.controller, self.setting.client)
 
 
 def noted_result(trials: Trials) -> TrialResult | None:

@@ -44,3 +44,25 @@ def test_without_a_shrink_budget_the_first_trial_is_still_driven_and_classified(
         with pytest.raises(Untested, match=BUDGET_SPENT):
             trials(Offset(x=0.01))
         assert trials.simulations == 2
+
+
+def test_what_another_item_cached_still_counts_among_an_items_simulations() -> None:
+    # Which items ran before in the process (xdist's distribution, a -k selection) must not
+    # change how far an item's search goes: a second search of the same placement, its runs all
+    # in the session's cache, counts them as the first did.
+    pair = next(pair for pair in PAPER.pairs if pair.name == "size")
+    witness = avoid_for(PAPER, scene(pair.name))[0]
+    choice = ControllerChoice("standing", "tests/search/test_trials.py", standing)
+    with PhysicsClient() as client:
+        setting = Setting(PAPER, pair, choice, 1, client, RunCache())
+        counts = []
+        for _ in range(2):
+            trials = Trials(
+                setting, scene(pair.name), witness.placement, (0.05, 1.0), "candidate", 0
+            )
+            with pytest.raises(TrialFailed):
+                trials(Offset())
+            with pytest.raises(Untested, match=BUDGET_SPENT):
+                trials(Offset(x=0.01))
+            counts.append(trials.simulations)
+        assert counts == [2, 2]
