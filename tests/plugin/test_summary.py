@@ -26,7 +26,7 @@ def test_items_run_and_sum_up_the_same_under_xdist_as_serially(
     assert summary(serial.stdout.lines) == summary(distributed.stdout.lines)
     assert summary(serial.stdout.lines)[1].split() == [
         # witnesses, examples, rejected, failed, by oracle, regressions, marginal, pre-existing
-        *("paper.lasertest.yaml::size", "8", "125", "0", "(0%)", "1", "0", "1", "1"),
+        *("paper.lasertest.yaml::size", "8", "131", "0", "(0%)", "1", "0", "1", "1"),
         *("1", "1", "2"),
     ]
     assert {
@@ -36,8 +36,9 @@ def test_items_run_and_sum_up_the_same_under_xdist_as_serially(
         "paper.lasertest.yaml::size[coverage]": "xfail",
         "paper.lasertest.yaml::size[no-obstacle]": "passed",
         "paper.lasertest.yaml::size[avoid-0]": "passed",
-        # A 0.4 m pole beside the route, which the 16-beam scanner reads with one beam: its
-        # robot gets stuck going round it; the 32-beam robot passes.
+        # A pole beside the route, which the 16-beam scanner reads with one beam: its robot is
+        # held going round it (stuck by a millimetre of progress, under every draw); the 32-beam
+        # robot passes. Under examples/, seeded by another node id, the item passes at seed 1.
         "paper.lasertest.yaml::size[avoid-1]": "failure",
         # The baseline robot passes only two of the placements to steer round.
         "paper.lasertest.yaml::size[avoid-2]": "skipped",
