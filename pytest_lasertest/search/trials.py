@@ -205,7 +205,7 @@ class Trials:
                 raise Untested(BUDGET_SPENT)
             self.simulations += 1
             self._driven.add(world)
-        return self.setting.cache.run(world, self.setting.controller, self.setting.client)
+        return self.setting.drive(profile, placement, draw)
 
 
 def noted_result(trials: Trials) -> TrialResult | None:
