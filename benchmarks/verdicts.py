@@ -5,7 +5,7 @@ Runs `pytest FILE --laser-seed=S --laser-profile=ci` for each pairs file and see
 the repository's examples and test data, with a fresh `.hypothesis/` for each run, so that no run
 replays another's failures), reads each run's JUnit XML, and prints for each file:
 
-    FILE: N items; K change with the seed; failed under every seed: ...; under some: ...
+    FILE: N items; K change with the seed; failed in every seed: ...; in some only: ...
 
 then, for each item whose outcome changes, its outcome under each seed (F failed, . passed,
 s skipped, p pre-existing, m marginal, c coverage-loss); and last
@@ -62,12 +62,18 @@ class Sweep:
         return [item for item, letters in self.outcomes.items() if len(set(letters)) > 1]
 
     def failing(self, every: bool) -> list[str]:
-        test = all if every else any
+        """The items that failed under every seed, or under some but not every one."""
         return [
             item
             for item, letters in self.outcomes.items()
-            if test(letter == "F" for letter in letters)
+            if any(letter == "F" for letter in letters)
+            and all(letter == "F" for letter in letters) == every
         ]
+
+    @property
+    def unit(self) -> str:
+        """What the runs differ by: a seed, or nothing (runs as on a CI service)."""
+        return "run" if all(seed is None for seed in self.seeds) else "seed"
 
 
 def seeds_from(text: str) -> tuple[int, ...]:
@@ -147,9 +153,10 @@ def sweep(runs: Runs, file: str, seeds: Sequence[int | None]) -> Sweep:
 def report(sweep: Sweep) -> list[str]:
     changing = sweep.changing()
     lines = [
-        f"{sweep.file}: {len(sweep.outcomes)} items; {len(changing)} change with the seed; "
-        f"failed under every seed: {', '.join(sweep.failing(every=True)) or 'none'}; "
-        f"under some: {', '.join(sweep.failing(every=False)) or 'none'}"
+        f"{sweep.file}: {len(sweep.outcomes)} items; {len(changing)} change with the "
+        f"{sweep.unit}; failed in every {sweep.unit}: "
+        f"{', '.join(sweep.failing(every=True)) or 'none'}; "
+        f"in some only: {', '.join(sweep.failing(every=False)) or 'none'}"
     ]
     lines += [f"  {''.join(sweep.outcomes[item])}  {item}" for item in changing]
     return lines
