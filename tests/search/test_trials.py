@@ -28,13 +28,19 @@ def standing(robot: Robot, route: tuple[Point2D, ...]) -> Controller:
     return Standing()
 
 
+PAIR = next(pair for pair in PAPER.pairs if pair.name == "size")
+CHOICE = ControllerChoice("standing", "tests/search/test_trials.py", standing)
+
+
+def searching(setting: Setting) -> Trials:
+    """The trials of a search around the size pair's first avoid witness, with no shrink budget."""
+    witness = avoid_for(PAPER, scene(PAIR.name))[0]
+    return Trials(setting, scene(PAIR.name), witness.placement, (0.05, 1.0), "candidate", 0)
+
+
 def test_without_a_shrink_budget_the_first_trial_is_still_driven_and_classified() -> None:
-    pair = next(pair for pair in PAPER.pairs if pair.name == "size")
-    witness = avoid_for(PAPER, scene(pair.name))[0]
-    choice = ControllerChoice("standing", "tests/search/test_trials.py", standing)
     with PhysicsClient() as client:
-        setting = Setting(PAPER, pair, choice, 1, client, RunCache())
-        trials = Trials(setting, scene(pair.name), witness.placement, (0.05, 1.0), "candidate", 0)
+        trials = searching(Setting(PAPER, PAIR, CHOICE, 1, client, RunCache()))
         with pytest.raises(TrialFailed) as failed:
             trials(Offset())
         # The candidate, then the baseline to classify the failure: both stand still.
@@ -50,16 +56,11 @@ def test_what_another_item_cached_still_counts_among_an_items_simulations() -> N
     # Which items ran before in the process (xdist's distribution, a -k selection) must not
     # change how far an item's search goes: a second search of the same placement, its runs all
     # in the session's cache, counts them as the first did.
-    pair = next(pair for pair in PAPER.pairs if pair.name == "size")
-    witness = avoid_for(PAPER, scene(pair.name))[0]
-    choice = ControllerChoice("standing", "tests/search/test_trials.py", standing)
     with PhysicsClient() as client:
-        setting = Setting(PAPER, pair, choice, 1, client, RunCache())
+        setting = Setting(PAPER, PAIR, CHOICE, 1, client, RunCache())
         counts = []
         for _ in range(2):
-            trials = Trials(
-                setting, scene(pair.name), witness.placement, (0.05, 1.0), "candidate", 0
-            )
+            trials = searching(setting)
             with pytest.raises(TrialFailed):
                 trials(Offset())
             with pytest.raises(Untested, match=BUDGET_SPENT):
