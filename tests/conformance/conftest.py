@@ -31,10 +31,16 @@ def pytest_configure(config: pytest.Config) -> None:
         raise pytest.UsageError("--conformance-table: run tests/conformance serially (-n 0)")
 
 
-def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    modules = {item.module for item in items if isinstance(item, pytest.Function)}
-    for module in sorted(modules, key=lambda module: module.__name__):
-        config.stash[LEDGER][1].extend(getattr(module, "NOT_PORTED", ()))
+@pytest.hookimpl(wrapper=True)
+def pytest_make_collect_report(
+    collector: pytest.Collector,
+) -> Generator[None, pytest.CollectReport, pytest.CollectReport]:
+    """Each module's NOT_PORTED, a module of nothing else (an upstream file of which nothing
+    could be set up) included."""
+    report = yield
+    if isinstance(collector, pytest.Module) and report.passed:
+        collector.config.stash[LEDGER][1].extend(getattr(collector.obj, "NOT_PORTED", ()))
+    return report
 
 
 @pytest.hookimpl(wrapper=True)

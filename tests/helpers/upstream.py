@@ -9,8 +9,10 @@ A conformance test ports one upstream test, or the part of it about one behaviou
     @INFLATION.test("TestNode.testCostFunctionCorrectness", assertions=12)
     def test_cost_function_correctness() -> None: ...
 
-`assertions` counts the upstream EXPECT_/ASSERT_ statements the test reproduces, each once (a
-statement in a loop too). One that our imitation departs from is its own test, marked
+`assertions` counts the upstream EXPECT_/ASSERT_ statements the test reproduces: each once (a
+statement in a loop too), those of an upstream helper once per call of the helper. The mark
+counts once per collected item: a parametrised test carries each case's count on its
+`pytest.param(..., marks=...)`. One that our imitation departs from is its own test, marked
 `pytest.mark.xfail(strict=True, reason=...)` with the reason: the table lists it as differing.
 Upstream assertions that cannot be set up with our classes are listed in the module's
 `NOT_PORTED`, each with its reason.
