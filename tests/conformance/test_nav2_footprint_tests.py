@@ -45,13 +45,6 @@ def test_a_costmap_given_neither_footprint_nor_radius_is_a_circle_of_16_points()
 
 
 @FOOTPRINT.test("TestNode.footprint_empty", assertions=1)
-@pytest.mark.xfail(
-    strict=True,
-    reason="upstream: the default circle of 0.1 m is padded by footprint_padding's default "
-    "0.01 m to 0.11 m (costmap_2d_ros.cpp:114 declares 0.01f; Costmap2DROS::setRobotFootprint "
-    "pads every footprint, :487-490); ours pads a `footprint` but not a `robot_radius` circle "
-    "(costmap_params._footprint), so its first point stays at 0.10 m",
-)
 def test_the_default_radius_circle_is_padded_to_0_11_m() -> None:
     # robot_radius given at its upstream default, which our reader lacks (the test above).
     points = footprint(robot_radius=0.1)

@@ -55,7 +55,7 @@ def _footprint(
     node: NodeParameters, config: CostmapConfig
 ) -> tuple[tuple[float, float], ...] | None:
     """`footprint` (a string of [[x, y], ...]) if set, else a polygon of `robot_radius` if
-    set, padded by footprint_padding; None, the robot's own, if neither is set."""
+    set, either padded by footprint_padding; None, the robot's own, if neither is set."""
     text = node.text("footprint", "[]")
     padding = node.number("footprint_padding", 0.01)
     if text.strip() not in ("", "[]"):
@@ -63,11 +63,14 @@ def _footprint(
     radius = node.number("robot_radius", 0.0)
     if "robot_radius" not in node.values:
         return config.footprint
-    # costmap_2d's makeFootprintFromRadius: 16 points on the circle.
-    return tuple(
+    # costmap_2d's makeFootprintFromRadius: 16 points on the circle; Costmap2DROS pads every
+    # footprint it is given, a radius's too (setRobotFootprint, costmap_2d_ros.cpp:487-490 at
+    # jazzy f4108e5b).
+    circle = tuple(
         (radius * math.cos(2 * math.pi * i / 16), radius * math.sin(2 * math.pi * i / 16))
         for i in range(16)
     )
+    return pad_footprint(circle, padding)
 
 
 def _polygon(node: NodeParameters, text: str) -> tuple[tuple[float, float], ...]:
