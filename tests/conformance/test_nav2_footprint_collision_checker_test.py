@@ -127,14 +127,6 @@ def footprint(text: str) -> tuple[tuple[float, float], ...] | None:
 
 
 @FOOTPRINT.test("collision_footprint.make_footprint_from_string", assertions=10)
-@pytest.mark.xfail(
-    strict=True,
-    raises=ParameterProblem,
-    reason="upstream: '[[1, 2.2], [.3, -4e4], [-.3, -4e4], [-1, 2.2]]' is a footprint of 4 "
-    "points (makeFootprintFromString parses it with nav2_util::parseVVF, which reads '.3' as "
-    "a number); ours parses the string as JSON (costmap_params._polygon), where '.3' is not a "
-    "number, and refuses the params file",
-)
 def test_a_footprint_string_of_numbers_without_leading_zeros_is_read() -> None:
     points = footprint("[[1, 2.2], [.3, -4e4], [-.3, -4e4], [-1, 2.2]]")
     assert points is not None  # upstream: it parses
@@ -155,15 +147,11 @@ def test_a_footprint_string_that_is_not_a_list_is_refused() -> None:
 def test_a_footprint_string_of_two_points_is_refused() -> None:
     with pytest.raises(ParameterProblem, match="footprint"):
         footprint("[[1, 2.2], [.3, -4e4]")
-    # Upstream's string lacks its last bracket and we read no '.3': refused for two points too.
     with pytest.raises(ParameterProblem, match="three or more"):
-        footprint("[[1, 2.2], [0.3, -4e4]]")
+        footprint("[[1, 2.2], [.3, -4e4]]")
 
 
 @FOOTPRINT.test("collision_footprint.make_footprint_from_string_not_pairs", assertions=1)
 def test_a_footprint_string_with_a_point_of_three_numbers_is_refused() -> None:
-    with pytest.raises(ParameterProblem, match="footprint"):
+    with pytest.raises(ParameterProblem, match="three or more"):
         footprint("[[1, 2.2], [.3, -4e4], [-.3, -4e4], [-1, 2.2, 5.6]]")
-    # We read no '.3' (the test above): refused for the point of three numbers too.
-    with pytest.raises(ParameterProblem, match="footprint"):
-        footprint("[[1, 2.2], [0.3, -4e4], [-0.3, -4e4], [-1, 2.2, 5.6]]")

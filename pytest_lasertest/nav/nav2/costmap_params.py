@@ -6,8 +6,10 @@ inflation_layer.cpp at jazzy f4108e5b)."""
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
+import re
+
+import numpy as np
 
 from pytest_lasertest.model.robot import pad_footprint
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
@@ -74,18 +76,68 @@ def _footprint(
 
 
 def _polygon(node: NodeParameters, text: str) -> tuple[tuple[float, float], ...]:
+    """makeFootprintFromString: at least three [x, y] pairs, read as parseVVF reads them."""
     try:
-        points = json.loads(text)
-        polygon = tuple((float(x), float(y)) for x, y in points)
-    except (ValueError, TypeError):
-        polygon = ()
-    if len(polygon) < 3:
+        rows = parse_vvf(text)
+    except ValueError as error:
+        raise node.problem(
+            "footprint",
+            f"cannot be read as a list of [x, y] points: {error}: {text!r}",
+            'write e.g. "[[0.5, 0.4], [0.5, -0.4], [-0.5, -0.4], [-0.5, 0.4]]"',
+        ) from None
+    if len(rows) < 3 or any(len(row) != 2 for row in rows):
         raise node.problem(
             "footprint",
             f"is not a polygon of three or more [x, y] points: {text!r}",
             'write e.g. "[[0.5, 0.4], [0.5, -0.4], [-0.5, -0.4], [-0.5, 0.4]]"',
         )
-    return polygon
+    return tuple((x, y) for x, y in rows)
+
+
+# One number as C++'s `stream >> float` reads it: no nan, no inf, no hexadecimal.
+_FLOAT_MAX = float(np.finfo(np.float32).max)
+_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+
+
+def parse_vvf(text: str) -> list[list[float]]:
+    """A list of lists of numbers, as nav2_util::parseVVF reads one (array_parser.cpp at jazzy
+    f4108e5b): brackets at most two deep, numbers only inside the inner ones, commas, spaces
+    and tabs between; each number a float (32 bits). Raises ValueError with parseVVF's
+    reason; a number that is not finite is refused too (it would reach the ray tracer)."""
+    rows: list[list[float]] = []
+    depth, at, row = 0, 0, list[float]()
+    while at < len(text):
+        char = text[at]
+        if char in ", \t":
+            at += 1
+        elif char in "[]":
+            depth += 1 if char == "[" else -1
+            if depth > 2 or depth < 0:
+                raise ValueError("brackets deeper than 2" if depth > 2 else "more ] than [")
+            if char == "[":
+                row = []
+            elif depth == 1:
+                rows.append(row)
+            at += 1
+        else:
+            at = _number(text, at, depth, row)
+    if depth != 0:
+        raise ValueError("an unterminated list")
+    return rows
+
+
+def _number(text: str, at: int, depth: int, row: list[float]) -> int:
+    """Reads the number at `at` onto `row`; where the text goes on after it."""
+    if depth != 2:
+        raise ValueError(f"{text[at]!r} outside an inner [...]")
+    match = _NUMBER.match(text, at)
+    if match is None:
+        raise ValueError(f"{text[at : at + 12]!r} is not a number")
+    value = float(match.group())
+    if not abs(value) <= _FLOAT_MAX:
+        raise ValueError(f"{match.group()} is out of a float's range")
+    row.append(float(np.float32(value)))
+    return match.end()
 
 
 def _layers(node: NodeParameters, config: CostmapConfig) -> CostmapConfig:
