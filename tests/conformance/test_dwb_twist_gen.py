@@ -9,10 +9,9 @@ and matchTwist count once per call.
 The imitation is a differential drive: the upstream test node's y limits are left out (y is 0
 alone), so each twist set here is the upstream one's y = 0 part, and the limits on x and theta
 (and the greatest speed, where no twist with y reaches it) stay those upstream asserts. Where a
-test turns a speed limit off with -1, that is set on the settings directly: our params file
-reader refuses a negative min_speed_xy, max_speed_xy or min_speed_theta (see
-`node_parameters._checked`), which Nav2 reads as "no limit" (xy_theta_iterator.cpp:99-104).
-Upstream's time_granularity steps are made with a linear_granularity giving the same steps.
+test turns a speed limit off with -1, the params file sets -1, which Nav2 reads as "no limit"
+(xy_theta_iterator.cpp:99-104). Upstream's time_granularity steps are made with a
+linear_granularity giving the same steps.
 
 Not applicable: the assertions on y and on speeds that include y (each test's min_y and max_y;
 max_xy's, no_limits' and no_limits_samples' greatest speed hypot(0.55, 0.1)), each matchTwist's
@@ -137,23 +136,21 @@ def test_a_speed_limit_beyond_the_velocities_limits_nothing() -> None:
 
 @TWISTS.test("VelocityIterator.min_xy", assertions=5)
 def test_without_a_least_speed_the_twists_still_span_the_limits() -> None:
-    check_limits(twists(dataclasses.replace(follow_path(), min_speed_xy=NO_LIMIT)))
+    check_limits(twists(follow_path(min_speed_xy=NO_LIMIT)))
 
 
 @TWISTS.test("VelocityIterator.min_theta", assertions=5)
 def test_without_a_least_turn_the_twists_still_span_the_limits() -> None:
-    check_limits(twists(dataclasses.replace(follow_path(), min_speed_theta=NO_LIMIT)))
+    check_limits(twists(follow_path(min_speed_theta=NO_LIMIT)))
 
 
-def unlimited(settings: DwbSettings) -> DwbSettings:
-    return dataclasses.replace(
-        settings, max_speed_xy=NO_LIMIT, min_speed_xy=NO_LIMIT, min_speed_theta=NO_LIMIT
-    )
+# The three speed limits off, as the upstream tests turn them off.
+UNLIMITED = dict.fromkeys(("max_speed_xy", "min_speed_xy", "min_speed_theta"), NO_LIMIT)
 
 
 @TWISTS.test("VelocityIterator.no_limits", assertions=7)
 def test_without_speed_limits_every_sample_is_a_twist_but_standing_still() -> None:
-    found = twists(unlimited(follow_path()))
+    found = twists(follow_path(**UNLIMITED))
     vx_samples, vtheta_samples, vy_samples = 20, 20, 1  # upstream's defaults; one y here
     # Upstream's count: every combination, a zero theta put in for each (x, y) (20 samples
     # from -1 to 1 rad/s miss 0), less (0, 0, 0).
@@ -165,7 +162,9 @@ def test_without_speed_limits_every_sample_is_a_twist_but_standing_still() -> No
 @TWISTS.test("VelocityIterator.no_limits_samples", assertions=7)
 def test_without_speed_limits_the_twists_are_the_samples_combined() -> None:
     x_samples, theta_samples, y_samples = 10, 5, 1  # upstream's 3 y samples: one here
-    found = twists(unlimited(follow_path(vx_samples=x_samples, vtheta_samples=theta_samples)))
+    found = twists(
+        follow_path(vx_samples=x_samples, vtheta_samples=theta_samples, **UNLIMITED)
+    )
     # 5 samples from -1 to 1 rad/s hit 0: nothing is put in.
     assert len(found.vx) == x_samples * y_samples * theta_samples - 1
     check_limits(found)

@@ -7,6 +7,7 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from pytest_lasertest.inputs.errors import SpecError
@@ -85,7 +86,11 @@ def test_a_teams_params_file_sets_the_nav2_imitation_and_jazzy_keeps_the_rest(
     assert s.local.costmap.inf_is_valid
     assert s.local.source.obstacle_max_range == 2.0
     # footprint_padding's default 0.01 m pads it, as costmap_2d does.
-    assert s.local.footprint == ((0.56, 0.46), (0.56, -0.46), (-0.56, -0.46), (-0.56, 0.46))
+    # Read at a float's precision, as parseVVF reads it, then padded by 0.01 m.
+    assert s.local.footprint is not None
+    assert np.allclose(
+        s.local.footprint, [(0.56, 0.46), (0.56, -0.46), (-0.56, -0.46), (-0.56, 0.46)]
+    )
     assert s.global_.footprint is None  # not set: the robot's own
     assert s.marking is Marking.CELLS_PREFILTERED
     assert config.unmodelled == ("amcl: every parameter (1)",)

@@ -45,6 +45,11 @@ MAY_BE_NEGATIVE = frozenset(
         "decel_lim_theta",
         "lookahead_time",
         "unknown_cost_value",  # -1, as a map's int8 writes unknown, reads 255 as a byte
+        # DWB's speed limits: a negative one is no limit (XYThetaIterator::isValidSpeed,
+        # dwb_plugins/src/xy_theta_iterator.cpp:99-104 at humble 3c3db59d).
+        "max_speed_xy",
+        "min_speed_xy",
+        "min_speed_theta",
     }
 )
 # Past these a figure is a typo, and the cycle would take seconds and gigabytes.
