@@ -162,9 +162,7 @@ def test_without_speed_limits_every_sample_is_a_twist_but_standing_still() -> No
 @TWISTS.test("VelocityIterator.no_limits_samples", assertions=7)
 def test_without_speed_limits_the_twists_are_the_samples_combined() -> None:
     x_samples, theta_samples, y_samples = 10, 5, 1  # upstream's 3 y samples: one here
-    found = twists(
-        follow_path(vx_samples=x_samples, vtheta_samples=theta_samples, **UNLIMITED)
-    )
+    found = twists(follow_path(vx_samples=x_samples, vtheta_samples=theta_samples, **UNLIMITED))
     # 5 samples from -1 to 1 rad/s hit 0: nothing is put in.
     assert len(found.vx) == x_samples * y_samples * theta_samples - 1
     check_limits(found)

@@ -71,13 +71,6 @@ def built(parameters: Mapping[str, ParameterValue]) -> Optimizer:
 # BasicInitializedFunctions
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="Nav2 turns a positive ax_min negative, with a warning (optimizer.cpp:92-97): 3.0 is "
-    "read as -3.0 m/s^2; ours keeps 3.0 (params.py _mppi; node_parameters.py lets ax_min be "
-    "positive), which forces every sample's speed 0.15 m/s a step away from zero, from a "
-    "standstill backwards (mppi.py _limits)",
-)
 @OPTIMIZER.test("OptimizerTests.BasicInitializedFunctions", assertions=1)
 def test_a_positive_ax_min_is_read_as_a_deceleration() -> None:
     settings = nav2_settings({**COMMON, "FollowPath.ax_min": 3.0, "FollowPath.ay_min": 3.0})
@@ -156,12 +149,6 @@ def ramp_cycle(mppi: Optimizer) -> tuple[float, F32]:
     return command[0], mppi.vx
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="Nav2 refuses a controller period longer than model_dt (optimizer.cpp:133-135, "
-    "'Controller period more then model dt'): 1 Hz with model_dt 0.1 s fails to configure; "
-    "ours reads controller_frequency and model_dt apart and accepts any pair (params.py)",
-)
 @OPTIMIZER.test("OptimizerTests.setOffsetTests", assertions=1)
 def test_a_controller_period_longer_than_model_dt_is_refused() -> None:
     with pytest.raises(ParameterProblem):
@@ -173,13 +160,6 @@ def test_a_controller_period_shorter_than_model_dt_is_accepted() -> None:
     assert isinstance(offset(30.0), Optimizer)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="Nav2 shifts the control sequence only when the controller period equals model_dt "
-    "(optimizer.cpp:117-136): at 30 Hz with model_dt 0.1 s it commands the sequence's first "
-    "element and keeps the sequence; ours always commands the second and shifts "
-    "(mppi.py Optimizer.command), as nav2_params.yaml's 20 Hz and 0.05 s would",
-)
 @OPTIMIZER.test("OptimizerTests.setOffsetTests", assertions=1)
 def test_a_controller_period_shorter_than_model_dt_does_not_shift_the_sequence() -> None:
     command, sequence = ramp_cycle(offset(30.0))

@@ -32,7 +32,7 @@ pairs:
 TEAM = """\
 controller_server:
   ros__parameters:
-    controller_frequency: 10.0
+    controller_frequency: 40.0
     controller_plugins: ["FollowPath"]
     FollowPath:
       plugin: "nav2_mppi_controller::MPPIController"
@@ -72,7 +72,7 @@ def test_a_teams_params_file_sets_the_nav2_imitation_and_jazzy_keeps_the_rest(
     robot = load(tmp_path).robot  # type: ignore[attr-defined]
     config = configure(robot.nav2, robot.nav2_release)
     s = config.settings
-    assert s.controller_frequency == 10.0
+    assert s.controller_frequency == 40.0
     assert s.mppi.batch_size == 1000
     assert s.mppi.time_steps == 56
     assert [type(critic).__name__ for critic in s.critics] == [
@@ -167,7 +167,7 @@ def test_nav2_bringups_own_params_file_sets_jazzys_values() -> None:
 
 CASES = {
     "a word where a number belongs": Case(
-        "controller_frequency: 10.0",
+        "controller_frequency: 40.0",
         "controller_frequency: fast",
         3,
         "controller_server.ros__parameters.controller_frequency",
@@ -175,7 +175,7 @@ CASES = {
         "write a number",
     ),
     "a zero rate": Case(
-        "controller_frequency: 10.0",
+        "controller_frequency: 40.0",
         "controller_frequency: 0",
         3,
         "controller_server.ros__parameters.controller_frequency",
@@ -189,6 +189,14 @@ CASES = {
         "controller_server.ros__parameters.FollowPath.batch_size",
         "2e+06 is beyond any Nav2 configuration (at most 100000)",
         "check the figure",
+    ),
+    "MPPI at a period longer than its model_dt": Case(
+        "controller_frequency: 40.0",
+        "controller_frequency: 10.0",
+        3,
+        "controller_server.ros__parameters.controller_frequency",
+        "10 Hz is a period longer than MPPI's model_dt (0.05 s)",
+        "write controller_frequency: 20, or a shorter model_dt",
     ),
     "a controller the imitation does not have": Case(
         "nav2_mppi_controller::MPPIController",

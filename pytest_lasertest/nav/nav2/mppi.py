@@ -182,13 +182,25 @@ def _furthest_reached(end_x: F32, end_y: F32, path: F32) -> int:
     return furthest
 
 
+# s: how near the controller's period must be to model_dt to count as equal (setOffset's eps).
+SAME_PERIOD = 1e-6
+
+
 class Optimizer:
     """MPPI's optimizer for a differential drive: one command per call of `command`."""
 
     def __init__(
-        self, settings: MppiSettings, critics: Sequence[Critic], rng: np.random.Generator
+        self,
+        settings: MppiSettings,
+        critics: Sequence[Critic],
+        rng: np.random.Generator,
+        shift: bool = True,
     ) -> None:
+        """`shift`: whether the controller's period equals model_dt, so that each command is
+        the sequence's second step and the sequence moves on a step after it (else the first,
+        and it stays: Optimizer::setOffset, optimizer.cpp:115-136 at jazzy f4108e5b)."""
         self.settings, self.critics = settings, tuple(critics)
+        self._offset = 1 if shift else 0
         self.vx = np.zeros(settings.time_steps, dtype=np.float32)  # (T,) the control sequence
         self.wz = np.zeros(settings.time_steps, dtype=np.float32)
         self.history = np.zeros((4, 2), dtype=np.float32)  # the last four commands [vx, wz]
@@ -212,8 +224,9 @@ class Optimizer:
             if failures > self.settings.retry_attempt_limit:
                 return None
         self._smooth()
-        command = float(self.vx[1]), float(self.wz[1])
-        self._shift()
+        command = float(self.vx[self._offset]), float(self.wz[self._offset])
+        if self._offset:
+            self._shift()
         return command
 
     def _optimize(self, cycle: Cycle) -> bool:
@@ -293,7 +306,8 @@ class Optimizer:
             # Each of the first T - 1 points from its 9-point window; the last is kept.
             windows = np.lib.stride_tricks.sliding_window_view(padded, 9)[: len(sequence) - 1]
             sequence[:-1] = windows @ SAVITZKY_GOLAY
-        self.history = np.vstack([self.history[1:], [[self.vx[1], self.wz[1]]]])
+        latest = [self.vx[self._offset], self.wz[self._offset]]
+        self.history = np.vstack([self.history[1:], [latest]])
 
     def _shift(self) -> None:
         """shiftControlSequence: one step on, the last step repeated."""

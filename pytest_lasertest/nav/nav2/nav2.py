@@ -48,7 +48,7 @@ from pytest_lasertest.nav.nav2.collision_monitor import approach, scan_points
 from pytest_lasertest.nav.nav2.costmap import Nav2Costmap
 from pytest_lasertest.nav.nav2.critics import ConstraintCritic
 from pytest_lasertest.nav.nav2.dwb import DwbController
-from pytest_lasertest.nav.nav2.mppi import F32, Critic, Optimizer
+from pytest_lasertest.nav.nav2.mppi import F32, SAME_PERIOD, Critic, Optimizer
 from pytest_lasertest.nav.nav2.params import configured
 from pytest_lasertest.nav.nav2.settings import CostmapConfig, Nav2Settings
 from pytest_lasertest.nav.nav2.velocity_smoother import VelocitySmoother
@@ -385,7 +385,8 @@ def _follow_path(s: Nav2Settings, seed: int) -> Optimizer | DwbController:
         else critic
         for critic in s.critics
     ]
-    return Optimizer(s.mppi, critics, np.random.default_rng(seed))
+    shift = abs(1.0 / s.controller_frequency - s.mppi.model_dt) < SAME_PERIOD
+    return Optimizer(s.mppi, critics, np.random.default_rng(seed), shift)
 
 
 def _footprint(config: CostmapConfig, robot: Robot) -> FloatArray:

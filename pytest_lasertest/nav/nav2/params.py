@@ -26,6 +26,7 @@ from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings
 from pytest_lasertest.nav.nav2.costmap_params import has_static_layer, read_costmap
 from pytest_lasertest.nav.nav2.dwb import CRITICS as DWB_CRITICS
 from pytest_lasertest.nav.nav2.dwb import DwbSettings
+from pytest_lasertest.nav.nav2.mppi import SAME_PERIOD
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
 from pytest_lasertest.nav.nav2.settings import (
     CRITICS,
@@ -92,17 +93,19 @@ def _controller_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
             "does not name FollowPath, the controller the default behaviour tree asks for",
             'write controller_plugins: ["FollowPath"] and FollowPath\'s parameters',
         )
+    frequency = node.number("controller_frequency", settings.controller_frequency)
     if node.plugin("FollowPath", (MPPI, DWB), "controller") == DWB:
         settings = _dwb(node, settings)
     else:
         settings = _mppi(node, settings)
+        _check_period(node, frequency, settings.mppi.model_dt)
     progress = node.names("progress_checker_plugins", ("progress_checker",))[0]
     node.plugin(progress, ("nav2_controller::SimpleProgressChecker",), "progress checker")
     goal = node.names("goal_checker_plugins", ("goal_checker",))[0]
     node.plugin(goal, ("nav2_controller::SimpleGoalChecker",), "goal checker")
     return dataclasses.replace(
         settings,
-        controller_frequency=node.number("controller_frequency", settings.controller_frequency),
+        controller_frequency=frequency,
         required_movement_radius=node.number(
             f"{progress}.required_movement_radius", settings.required_movement_radius
         ),
@@ -119,12 +122,28 @@ def _mppi(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
         raise node.problem(
             "FollowPath.motion_model", "the robots here are differential drives", "write DiffDrive"
         )
+    mppi = node.fields("FollowPath.", settings.mppi)
+    # Optimizer::getParams takes ax_max's magnitude and turns a positive ax_min negative,
+    # with a warning (optimizer.cpp:90-97 at jazzy f4108e5b).
+    mppi = dataclasses.replace(mppi, ax_max=abs(mppi.ax_max), ax_min=-abs(mppi.ax_min))
     return dataclasses.replace(
         settings,
-        mppi=node.fields("FollowPath.", settings.mppi),
+        mppi=mppi,
         critics=_critics(node, settings.critics),
         prune_distance=node.number("FollowPath.prune_distance", settings.prune_distance),
     )
+
+
+def _check_period(node: NodeParameters, frequency: float, model_dt: float) -> None:
+    """MPPI refuses to start where the controller's period is longer than a step of its
+    model (Optimizer::setOffset, optimizer.cpp:115-136 at jazzy f4108e5b)."""
+    if 1.0 / frequency > model_dt + SAME_PERIOD:
+        raise node.problem(
+            "controller_frequency",
+            f"{frequency:g} Hz is a period longer than MPPI's model_dt ({model_dt:g} s): Nav2's "
+            'MPPI refuses to start ("Controller period more then model dt")',
+            f"write controller_frequency: {1.0 / model_dt:g}, or a shorter model_dt",
+        )
 
 
 def _dwb(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
