@@ -94,12 +94,6 @@ SCAN: dict[str, ParameterValue] = {"Scan.type": "scan", "Scan.topic": "Scan"}
 
 
 @NODE.test("Tester.testIncorrectPolygonType", assertions=1)
-@pytest.mark.xfail(
-    strict=True,
-    reason='Nav2 refuses a polygon of type "unknown" (collision_monitor_node.cpp:313-331 knows '
-    "polygon, circle and velocity_polygon); our params reader reads type but not its value "
-    "(params.py:274) and monitors the footprint",
-)
 def test_a_polygon_of_unknown_type_is_refused() -> None:
     with pytest.raises(ParameterProblem):
         configured(
@@ -114,12 +108,6 @@ def test_a_polygon_of_unknown_type_is_refused() -> None:
 
 
 @NODE.test("Tester.testIncorrectSourceType", assertions=1)
-@pytest.mark.xfail(
-    strict=True,
-    reason='Nav2 refuses a source of type "unknown" (collision_monitor_node.cpp:366-403 knows '
-    "scan, pointcloud, range and polygon); our params reader reads type but not its value "
-    "(params.py:284) and reads the scan",
-)
 def test_a_source_of_unknown_type_is_refused() -> None:
     with pytest.raises(ParameterProblem):
         configured(

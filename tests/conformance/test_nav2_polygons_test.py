@@ -144,12 +144,6 @@ def test_a_polygon_without_an_action_type_is_refused() -> None:
 
 
 @POLYGONS.test("Tester.testPolygonMaxPoints", assertions=1)
-@pytest.mark.xfail(
-    strict=True,
-    reason="Nav2 still reads the deprecated max_points, of any action type, as min_points = "
-    "max_points + 1 over min_points (polygon.cpp:359-369): 6 here; our params reader does not "
-    "read max_points (it is listed as unmodelled) and keeps min_points 2",
-)
 def test_the_deprecated_max_points_sets_min_points_one_above_it() -> None:
     # Upstream's polygon is a stop polygon, which our monitor refuses whatever max_points
     # says; max_points is read alike for every action type, so this one is an approach.

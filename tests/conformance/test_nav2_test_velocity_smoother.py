@@ -225,26 +225,13 @@ def test_a_limit_of_two_numbers_or_an_unknown_feedback_type_is_refused(
     assert refused.value.name in parameters  # refused for that, not another
 
 
-SIGNS_UNCHECKED = (
-    "Nav2 refuses to configure with {what} (velocity_smoother.cpp:78-101 checks each axis's "
-    "sign); our params reader takes velocity_smoother's lists through NodeParameters.numbers, "
-    "which checks their length but not their signs (node_parameters.py:117), so the smoother "
-    "runs with them"
-)
-
-
 @SMOOTHER.test("VelocitySmootherTest.testInvalidParamsAccelDecel", assertions=1)
-@pytest.mark.xfail(
-    strict=True,
-    reason=SIGNS_UNCHECKED.format(what="a negative max_velocity and a positive min_velocity"),
-)
 def test_a_negative_max_velocity_and_a_positive_min_velocity_are_refused() -> None:
     with pytest.raises(ParameterProblem):
         smoother(max_velocity=(-10.0, -10.0, -10.0), min_velocity=(10.0, 10.0, 10.0))
 
 
 @SMOOTHER.test("VelocitySmootherTest.testInvalidParamsAccelDecel", assertions=1)
-@pytest.mark.xfail(strict=True, reason=SIGNS_UNCHECKED.format(what="a negative max_accel"))
 def test_a_negative_max_accel_is_refused() -> None:
     # Upstream sets it on top of the bad velocities; alone it is refused too (line 85).
     with pytest.raises(ParameterProblem):
@@ -252,7 +239,6 @@ def test_a_negative_max_accel_is_refused() -> None:
 
 
 @SMOOTHER.test("VelocitySmootherTest.testInvalidParamsAccelDecel", assertions=1)
-@pytest.mark.xfail(strict=True, reason=SIGNS_UNCHECKED.format(what="a positive max_decel"))
 def test_a_positive_max_decel_is_refused() -> None:
     # Upstream sets it on top of the bad velocities; alone it is refused too (line 78).
     with pytest.raises(ParameterProblem):

@@ -57,6 +57,11 @@ planner_server:
     GridBased: {plugin: "nav2_navfn_planner/NavfnPlanner", use_astar: false}
 amcl:
   ros__parameters: {alpha1: 0.2}
+velocity_smoother:
+  ros__parameters: {max_decel: [-2.5, 0.0, -3.2]}
+collision_monitor:
+  ros__parameters:
+    FootprintApproach: {type: "polygon", action_type: "approach"}
 """
 
 
@@ -197,6 +202,30 @@ CASES = {
         "controller_server.ros__parameters.controller_frequency",
         "10 Hz is a period longer than MPPI's model_dt (0.05 s)",
         "write controller_frequency: 20, or a shorter model_dt",
+    ),
+    "a smoother that speeds up to slow down": Case(
+        "max_decel: [-2.5, 0.0, -3.2]",
+        "max_decel: [2.5, 0.0, -3.2]",
+        29,
+        "velocity_smoother.ros__parameters.max_decel",
+        "has a positive value [2.5, 0.0, -3.2]: Nav2's velocity smoother refuses to start",
+        "write each of max_decel zero or less",
+    ),
+    "a collision monitor polygon of a type Nav2 does not know": Case(
+        'type: "polygon"',
+        'type: "square"',
+        32,
+        "collision_monitor.ros__parameters.FootprintApproach.type",
+        "'square' is not a type Nav2's collision monitor knows (polygon, circle, velocity_polygon)",
+        "write polygon",
+    ),
+    "a collision monitor circle": Case(
+        'type: "polygon"',
+        'type: "circle"',
+        32,
+        "collision_monitor.ros__parameters.FootprintApproach.type",
+        "'circle' is not imitated: the monitor here has one footprint polygon on the scan",
+        "write polygon",
     ),
     "a controller the imitation does not have": Case(
         "nav2_mppi_controller::MPPIController",

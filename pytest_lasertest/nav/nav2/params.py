@@ -262,7 +262,8 @@ def _velocity_smoother(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
         raise node.problem("feedback", "only OPEN_LOOP is imitated", "write OPEN_LOOP")
 
     def pair(name: str, default: tuple[float, float]) -> tuple[float, float]:
-        x, _, theta = node.numbers(name, (default[0], 0.0, default[1]))
+        x, y, theta = node.numbers(name, (default[0], 0.0, default[1]))
+        _check_signs(node, name, (x, y, theta))
         return x, theta
 
     smoother = dataclasses.replace(
@@ -274,6 +275,22 @@ def _velocity_smoother(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
         max_decel=pair("max_decel", s.max_decel),
     )
     return dataclasses.replace(settings, smoother=smoother)
+
+
+# The sign each of the smoother's limits must have, or it fails to configure
+# (VelocitySmoother::on_configure, velocity_smoother.cpp:77-101 at jazzy f4108e5b).
+_SMOOTHER_SIGNS = {"max_velocity": 1, "min_velocity": -1, "max_accel": 1, "max_decel": -1}
+
+
+def _check_signs(node: NodeParameters, name: str, values: tuple[float, ...]) -> None:
+    sign = _SMOOTHER_SIGNS[name]
+    if any(value * sign < 0.0 for value in values):
+        word = "negative" if sign > 0 else "positive"
+        raise node.problem(
+            name,
+            f"has a {word} value {list(values)}: Nav2's velocity smoother refuses to start",
+            f"write each of {name} {'zero or more' if sign > 0 else 'zero or less'}",
+        )
 
 
 def _collision_monitor(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
@@ -290,7 +307,12 @@ def _collision_monitor(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
         )
     polygon = enabled[0]
     monitor = node.fields(f"{polygon}.", CollisionMonitorSettings())
-    node.text(f"{polygon}.type", "polygon")
+    if f"{polygon}.max_points" in node.values:
+        # Deprecated, and still read over min_points (Polygon::getCommonParameters,
+        # polygon.cpp:359-369 at jazzy f4108e5b).
+        most = int(node.number(f"{polygon}.max_points", 0, whole=True))
+        monitor = dataclasses.replace(monitor, min_points=most + 1)
+    _check_type(node, f"{polygon}.type", "polygon", POLYGON_TYPES)
     node.text(f"{polygon}.footprint_topic", "")
     sources = node.names("observation_sources", ("scan",))
     if len(sources) != 1:
@@ -300,9 +322,28 @@ def _collision_monitor(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
     if not node.flag(f"{sources[0]}.enabled", True):
         return dataclasses.replace(settings, collision_monitor=None)  # it reads nothing
     monitor = node.fields(f"{sources[0]}.", monitor)
-    node.text(f"{sources[0]}.type", "scan")
+    _check_type(node, f"{sources[0]}.type", "scan", SOURCE_TYPES)
     node.text(f"{sources[0]}.topic", "")
     return dataclasses.replace(settings, collision_monitor=monitor)
+
+
+# The types the collision monitor knows (CollisionMonitor::configurePolygons and
+# configureSources, collision_monitor_node.cpp:313-331, 366-403 at jazzy f4108e5b).
+POLYGON_TYPES = ("polygon", "circle", "velocity_polygon")
+SOURCE_TYPES = ("scan", "pointcloud", "range", "polygon")
+
+
+def _check_type(node: NodeParameters, name: str, imitated: str, known: tuple[str, ...]) -> None:
+    """A polygon's or source's type: one Nav2 knows (else it refuses to configure), and the
+    one the imitation has."""
+    kind = node.text(name, imitated)
+    if kind not in known:
+        why = f"{kind!r} is not a type Nav2's collision monitor knows ({', '.join(known)})"
+    elif kind != imitated:
+        why = f"{kind!r} is not imitated: the monitor here has one footprint polygon on the scan"
+    else:
+        return
+    raise node.problem(name, why, f"write {imitated}")
 
 
 def _behavior_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
