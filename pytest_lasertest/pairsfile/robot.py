@@ -223,7 +223,8 @@ def _nominal(fields: dict[str, SpecNode], key: str, bounds: Bounds, top: float) 
 
 
 def _footprint(node: SpecNode) -> tuple[tuple[float, float], ...]:
-    """A convex polygon around the base origin, as costmap_2d's `footprint` parameter."""
+    """A convex polygon around the base origin (on its edge at least), as costmap_2d's
+    `footprint` parameter."""
     example = (
         "write the corners as ROS does, "
         "e.g. [[-0.5, -0.33], [-0.5, 0.33], [0.5, 0.33], [0.5, -0.33]]"
@@ -242,7 +243,8 @@ def _footprint(node: SpecNode) -> tuple[tuple[float, float], ...]:
     if not (all(turn > 0 for turn in turns) or all(turn < 0 for turn in turns)):
         raise node.error("the corners do not form a convex polygon", example)
     ordered = points if turns[0] > 0 else points[::-1]
-    if any(_cross(ordered[i - 1], ordered[i], (0.0, 0.0)) <= 0 for i in range(len(ordered))):
+    # On an edge is inside, as costmap_2d's own tests have it (footprint_tests.cpp's triangle).
+    if any(_cross(ordered[i - 1], ordered[i], (0.0, 0.0)) < 0 for i in range(len(ordered))):
         raise node.error("the polygon does not contain the robot's origin", example)
     return tuple((x, y) for x, y in ordered)
 
