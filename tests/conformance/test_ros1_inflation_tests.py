@@ -3,9 +3,9 @@ Costmap's inflation (pytest_lasertest/nav/move_base/costmap.py: InflationCost, c
 tests/helpers/ros1_costmap.py: single lethal points and TenByTen's walls inflated around a
 rectangular footprint, cost_scaling_factor 1 as inflation_tests.launch sets it.
 
-Every test of the file is ported. Where the robot stands at (0, 0) next to an obstacle our
-costmap frees the footprint's cells that lie on the map, and costmap_2d does not (see
-FOOTPRINT_OFF_THE_MAP).
+Every test of the file is ported. Where the robot stands at (0, 0), its footprint reaching off
+the map, neither costmap frees a cell under it (Costmap2D::setConvexPolygonCost gives up as soon
+as a corner lies off the map, costmap_2d/src/costmap_2d.cpp:324).
 """
 
 from __future__ import annotations
@@ -26,14 +26,6 @@ INFLATION = Source(
     "ROS 1 costmap_2d: inflation", NAVIGATION_NOETIC, "costmap_2d/test/inflation_tests.cpp"
 )
 COST_SCALING_FACTOR = 1.0  # 1/m, inflation_tests.launch's inflation/cost_scaling_factor
-FOOTPRINT_OFF_THE_MAP = (
-    "the robot stands at (0, 0), its footprint reaching off the map; costmap_2d frees no cell "
-    "under it (Costmap2D::setConvexPolygonCost returns false as soon as a corner lies off the "
-    "map, costmap_2d/src/costmap_2d.cpp:324, called from ObstacleLayer::updateCosts, "
-    "plugins/obstacle_layer.cpp:433), so the obstacle observed at the robot's cell stays "
-    "lethal; our costmap frees the footprint's cells that lie on the map "
-    "(Costmap._free_footprint, costmap.py:266) and the obstacle is gone"
-)
 
 
 def inflated(
@@ -74,7 +66,6 @@ def adjacent() -> Grid:
 
 
 @INFLATION.test("costmap.testAdjacentToObstacleCanStillMove", assertions=4)
-@pytest.mark.xfail(strict=True, reason=FOOTPRINT_OFF_THE_MAP)
 def test_an_obstacle_at_the_robot_stays_lethal_and_inflates_its_inscribed_neighbours() -> None:
     costs = adjacent()
     assert costs[0, 0] == LETHAL
@@ -88,8 +79,6 @@ def test_cells_beyond_the_inscribed_radius_of_an_adjacent_obstacle_cost_less_tha
     None
 ):
     costs = adjacent()
-    # Ours holds for a lesser reason: with the obstacle freed (see the test above) these cells
-    # cost nothing at all.
     assert costs[0, 3] < INSCRIBED
     assert costs[1, 2] < INSCRIBED
 
@@ -176,7 +165,6 @@ def test_the_maps_walls_alone_make_20_lethal_and_28_inscribed_cells(ten: Occupan
 
 
 @INFLATION.test("costmap.testInflation", assertions=2)
-@pytest.mark.xfail(strict=True, reason=FOOTPRINT_OFF_THE_MAP)
 def test_obstacles_at_the_robot_and_two_cells_on_add_their_cells_and_neighbours(
     ten: OccupancyGrid,
 ) -> None:

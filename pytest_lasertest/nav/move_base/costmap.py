@@ -265,15 +265,16 @@ class Costmap:
 
     def _free_footprint(self, robot: tuple[float, float, float]) -> None:
         """Free the cells the footprint at pose [x, y, yaw] covers: each column between its
-        outline's lowest and highest cell, as costmap_2d's convexFillCells does."""
-        corners_x, corners_y, _ = self.cell_of(place(self.footprint, np.array(robot)))
+        outline's lowest and highest cell, as costmap_2d's convexFillCells does; none where a
+        corner lies off the window, as setConvexPolygonCost gives up then (costmap_2d.cpp:324
+        at noetic 9ad64419)."""
+        corners_x, corners_y, on = self.cell_of(place(self.footprint, np.array(robot)))
+        if not on.all():
+            return
         left, bottom = int(corners_x.min()), int(corners_y.min())
         box = tuple((corners_x - left).tolist()), tuple((corners_y - bottom).tolist())
         columns, rows = _convex_fill(*box)
-        x, y = columns + left, rows + bottom
-        cells = self.settings.cells
-        inside = (x >= 0) & (x < cells) & (y >= 0) & (y < cells)
-        self.grid[y[inside], x[inside]] = FREE
+        self.grid[rows + bottom, columns + left] = FREE
 
 
 @functools.lru_cache(maxsize=4096)
