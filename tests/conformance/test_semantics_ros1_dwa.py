@@ -239,16 +239,6 @@ def test_an_outline_on_cell_centres_half_a_metre_from_a_lethal_cell_costs_46() -
     assert scores[0] == pytest.approx(0.46, abs=TIGHT)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="bug: ObstacleCostFunction costs every trajectory by the inflation of the cells "
-    "under its outline (obstacle_cost_function.cpp:116-150): the straight 0.25 m/s sample "
-    "from rest ends with its front 0.2 m short of a lethal cell, within the inscribed radius, "
-    "so it costs 0.01 x 253; ours keeps only the lethal cells within the circumscribed "
-    "radius (0.6 m) of the box around all samples' positions "
-    "(pytest_lasertest/nav/move_base/dwa.py:245, _within), drops this one 0.7 m on, and "
-    "costs it 0: the inflation beyond that reach is never charged",
-)
 def test_a_sample_ending_0_2_m_short_of_a_lethal_cell_is_charged_its_inflation() -> None:
     # At 10 Hz from rest every sample is at most 0.25 m/s (scaling_speed: unscaled); the
     # straight one at 0.25 m/s has 17 steps of 0.1 s and ends 0.4 m on, its front at 0.9 m.

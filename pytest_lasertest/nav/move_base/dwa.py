@@ -242,7 +242,10 @@ class LocalPlanner:
         grow = np.where(speed > slowest, (speed - slowest) / span, 0.0)
         scale = 1.0 + settings.max_scaling_factor * grow  # (S,)
         x, y = rollouts.x.ravel(), rollouts.y.ravel()
-        near = _within(around.lethal, x, y, self.reach * float(scale.max()))
+        # A lethal cell raises the cost under the footprint out to the inflation radius beyond
+        # its outline (footprintCost reads the inflated costmap).
+        reach = self.reach * float(scale.max()) + self.cost.inflation_radius
+        near = _within(around.lethal, x, y, reach)
         if not len(near):
             return np.zeros(count)
         poses = Poses(x, y, rollouts.yaw.ravel(), np.repeat(scale, rollouts.x.shape[1]), count)
