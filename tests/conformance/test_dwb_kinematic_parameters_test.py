@@ -8,9 +8,7 @@ acc_lim_y, decel_lim_y), a holonomic robot's, as the imitation is a differential
 
 from __future__ import annotations
 
-from pytest_lasertest.model.robot import ParameterValue
-from pytest_lasertest.nav.nav2.dwb import DwbSettings
-from pytest_lasertest.nav.nav2.params import DWB, configure
+from tests.helpers.dwb import dwb_settings
 from tests.helpers.upstream import NAVIGATION2_HUMBLE, Source
 
 KINEMATICS = Source(
@@ -33,20 +31,7 @@ VALUES = {
 }
 
 
-def read(values: dict[str, float]) -> DwbSettings:
-    """DWB's settings from a params file setting `values` under FollowPath."""
-    parameters: list[tuple[str, str, ParameterValue]] = [
-        ("controller_server", "FollowPath.plugin", DWB)
-    ]
-    parameters += [
-        ("controller_server", f"FollowPath.{name}", value) for name, value in values.items()
-    ]
-    settings = configure(parameters, "humble").settings.dwb
-    assert settings is not None
-    return settings
-
-
 @KINEMATICS.test("KinematicParameters.SetAllParameters", assertions=10)
 def test_every_kinematic_parameter_sets_its_own_limit() -> None:
-    settings = read(VALUES)
+    settings = dwb_settings(VALUES)
     assert {name: getattr(settings, name) for name in VALUES} == VALUES

@@ -30,7 +30,7 @@ import pytest
 from pytest_lasertest.model.robot import ParameterValue
 from pytest_lasertest.nav.nav2.dwb import DwbSettings, roll_out, sample_twists
 from pytest_lasertest.nav.nav2.dwb_critics import F64
-from pytest_lasertest.nav.nav2.params import DWB, configure
+from tests.helpers.dwb import dwb_settings
 from tests.helpers.upstream import NAVIGATION2_HUMBLE, NotPorted, Source
 
 PATH = "nav2_dwb_controller/dwb_plugins/test/twist_gen.cpp"
@@ -68,16 +68,7 @@ NO_LIMIT = -1.0
 
 def follow_path(**overrides: ParameterValue) -> DwbSettings:
     """DWB's settings from a params file setting the upstream test node's parameters."""
-    values = KINEMATICS | overrides
-    parameters: list[tuple[str, str, ParameterValue]] = [
-        ("controller_server", "FollowPath.plugin", DWB)
-    ]
-    parameters += [
-        ("controller_server", f"FollowPath.{key}", value) for key, value in values.items()
-    ]
-    settings = configure(parameters, "humble").settings.dwb
-    assert settings is not None
-    return settings
+    return dwb_settings(KINEMATICS | overrides)
 
 
 def double_eq(a: float, b: float) -> bool:

@@ -10,8 +10,9 @@ constants and plain functions, each in the module of its kind.
 - `tests.helpers.costmap`: scans fed to a costmap, and the costs read back;
 - `tests.helpers.sim`: what the simulator tests share;
 - `tests.helpers.upstream`: the upstream tests tests/conformance ports, and their table;
-- `tests.helpers.nav2_costmap`, `tests.helpers.ros1_costmap`, `tests.helpers.mppi`: the
-  upstream test harnesses of Nav2's costmap, ROS 1's costmap_2d and MPPI, rebuilt on ours.
+- `tests.helpers.nav2_costmap`, `tests.helpers.ros1_costmap`, `tests.helpers.mppi`,
+  `tests.helpers.dwb`: the upstream test harnesses of Nav2's costmap, ROS 1's costmap_2d, MPPI
+  and DWB, rebuilt on ours.
 
 No test module imports another test module or a conftest.py: what they share is here.
 """
