@@ -25,7 +25,6 @@ import dataclasses
 import struct
 
 import numpy as np
-import pytest
 
 from pytest_lasertest.model.robot import ParameterValue
 from pytest_lasertest.nav.nav2.dwb import DwbSettings, roll_out, sample_twists
@@ -189,28 +188,17 @@ def is_for(found: Trajectory, vx: float, theta: float) -> bool:
     return double_eq(found.vx, vx) and double_eq(found.theta, theta)
 
 
-_REPEAT = (
-    "upstream's generateTrajectory appends the last pose once more, include_last_point being "
-    "true by default (standard_traj_generator.cpp:76, :181-182); ours does not store the "
-    "repeat (a deliberate departure, dwb.py's module docstring: no default critic tells it "
-    "apart)"
-)
-
-
 @TRAJECTORIES.test("TrajectoryGenerator.basic", assertions=9)
 def test_a_trajectory_at_constant_speed_ends_sim_time_times_the_speed_ahead() -> None:
     found = trajectory(follow_path(linear_granularity=0.5), FORWARD, FORWARD)
     assert is_for(found, FORWARD, 0.0)
     assert len(found.poses) > 0
     assert at(found.poses[0], 0.0, 0.0, 0.0)
-    # Upstream reads poses[n - 1], the repeat of the last step's pose: ours is that pose.
+    # poses[n - 1], the repeat of the last step's pose.
     assert at(found.poses[-1], SIM_TIME * FORWARD, 0.0, 0.0)
 
 
 @TRAJECTORIES.test("TrajectoryGenerator.basic", assertions=1)
-@pytest.mark.xfail(
-    strict=True, raises=AssertionError, reason="upstream counts 4 poses, ours 3: " + _REPEAT
-)
 def test_a_trajectory_of_two_steps_has_four_poses() -> None:
     # 0.51 m at most 0.5 m a step: 2 steps.
     assert len(trajectory(follow_path(linear_granularity=0.5), FORWARD, FORWARD).poses) == 4
@@ -218,8 +206,9 @@ def test_a_trajectory_of_two_steps_has_four_poses() -> None:
 
 @TRAJECTORIES.test("TrajectoryGenerator.basic_no_last_point", assertions=10)
 def test_without_the_repeated_last_pose_a_trajectory_of_two_steps_has_three_poses() -> None:
-    # include_last_point false, upstream's option, is what ours always does.
-    found = trajectory(follow_path(linear_granularity=0.5), FORWARD, FORWARD)
+    found = trajectory(
+        follow_path(linear_granularity=0.5, include_last_point=False), FORWARD, FORWARD
+    )
     assert is_for(found, FORWARD, 0.0)
     assert len(found.poses) == 3
     assert len(found.poses) > 0
@@ -236,9 +225,6 @@ def test_a_trajectory_shorter_than_a_step_starts_at_the_start() -> None:
 
 
 @TRAJECTORIES.test("TrajectoryGenerator.too_slow", assertions=1)
-@pytest.mark.xfail(
-    strict=True, raises=AssertionError, reason="upstream counts 3 poses, ours 2: " + _REPEAT
-)
 def test_a_trajectory_shorter_than_a_step_has_three_poses() -> None:
     # 0.34 m, under the 0.5 m of a step: one step.
     assert len(trajectory(follow_path(linear_granularity=0.5), 0.2, 0.2).poses) == 3
@@ -251,14 +237,11 @@ def test_a_longer_sim_time_makes_a_longer_trajectory() -> None:
     assert is_for(found, FORWARD, 0.0)
     assert len(found.poses) > 0
     assert at(found.poses[0], 0.0, 0.0, 0.0)
-    # Upstream reads poses[n - 2], n = 4: poses[2], the last step's pose, as ours.
+    # poses[n - 2], n = 4: the last step's pose.
     assert at(found.poses[2], sim_time * FORWARD, 0.0, 0.0)
 
 
 @TRAJECTORIES.test("TrajectoryGenerator.sim_time", assertions=1)
-@pytest.mark.xfail(
-    strict=True, raises=AssertionError, reason="upstream counts 4 poses, ours 3: " + _REPEAT
-)
 def test_a_trajectory_of_two_longer_steps_has_four_poses() -> None:
     settings = follow_path(sim_time=2.5, linear_granularity=0.5)
     assert len(trajectory(settings, FORWARD, FORWARD).poses) == 4
@@ -281,8 +264,5 @@ def test_a_trajectory_from_standstill_accelerates_at_the_limit() -> None:
 
 
 @TRAJECTORIES.test("TrajectoryGenerator.accel", assertions=1)
-@pytest.mark.xfail(
-    strict=True, raises=AssertionError, reason="upstream counts 7 poses, ours 6: " + _REPEAT
-)
 def test_a_trajectory_of_five_steps_has_seven_poses() -> None:
     assert len(trajectory(accelerating(), 0.0, FORWARD).poses) == 7

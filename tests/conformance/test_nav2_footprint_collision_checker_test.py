@@ -1,7 +1,8 @@
 """nav2_costmap_2d's footprint collision checker tests (test/unit/footprint_collision_checker_test
 .cpp), rebuilt on what stands for FootprintCollisionChecker in our Nav2: the behaviours'
-collision check (`Nav2._collides`, whether the footprint's outline at a pose meets a lethal
-cell of the local costmap, read through the costmap's `cell_of`), on a local costmap of
+collision check (`Nav2._collides`, whether the footprint's outline at a pose, rasterised edge by
+edge as footprintCost does, meets a cost of lethal or more in the local costmap), on a local
+costmap of
 100 x 100 cells of 0.1 m from (0, 0); and the footprint strings of the same file on our reading
 of a params file's `footprint` (`configure`).
 
@@ -103,15 +104,6 @@ def test_a_footprint_meets_a_lethal_cell_under_its_corner_and_not_one_outside() 
 
 
 @CHECKER.test("collision_footprint.test_point_and_line_cost", assertions=1)
-@pytest.mark.xfail(
-    strict=True,
-    reason="upstream: at (5.2, 5.0) the footprint's right edge, x = 6.2 m, runs through the "
-    "lethal cell (62, 50), and footprintCost rasterises each edge cell by cell with lineCost's "
-    "LineIterator (nav2_costmap_2d/src/footprint_collision_checker.cpp:48-104): 254; ours "
-    "samples 8 points along each edge (pytest_lasertest/nav/nav2/nav2.py:271, "
-    "Nav2._collides), 0.29 m apart on the 2 m edge, in cells 48 and 51 either side of row "
-    "50: no collision",
-)
 def test_a_footprint_meets_a_lethal_cell_in_the_middle_of_its_edge() -> None:
     assert two_lethal_cells()._collides((5.2, 5.0, 0.0))
 

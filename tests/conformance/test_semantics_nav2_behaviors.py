@@ -27,6 +27,7 @@ import pytest
 from pytest_lasertest.model.geometry import Point2D
 from pytest_lasertest.nav.nav2.behaviors import BackUp, Spin
 from pytest_lasertest.nav.nav2.nav2 import RECOVERIES, Nav2
+from tests.helpers.costmap import scan
 from tests.helpers.paper import PAPER
 
 Pose = tuple[float, float, float]  # m, m, rad
@@ -364,8 +365,10 @@ def test_a_back_up_that_completes_only_after_its_time_allowance_fails() -> None:
 
 
 def recovering(name: str) -> Nav2:
-    """Our Nav2 for the paper's Husky, its round robin at `name`, started."""
+    """Our Nav2 for the paper's Husky, its round robin at `name`, started, its local costmap
+    rolled round the robot by a scan that reads nothing."""
     nav2 = Nav2(PAPER.robot, (Point2D(5.0, 0.0),))
+    nav2.local.update(scan(math.inf), (0.0, 0.0, 0.0))
     nav2._robin = RECOVERIES.index(name)
     nav2._begin_recovery((0.0, 0.0, 0.0), 0.0)
     return nav2

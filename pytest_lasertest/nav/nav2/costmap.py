@@ -6,6 +6,8 @@ from raytrace_min_range to raytrace_max_range. The inflation layer's cost is the
 
 from __future__ import annotations
 
+import numpy as np
+
 from pytest_lasertest.model.geometry import FloatArray
 from pytest_lasertest.nav.move_base.cost_values import FREE, LETHAL
 from pytest_lasertest.nav.move_base.costmap import Costmap, CostmapSettings
@@ -18,6 +20,7 @@ from pytest_lasertest.nav.nav2.obstacle_layer import (
     marked,
 )
 from pytest_lasertest.nav.protocol import LaserScan
+from pytest_lasertest.nav.raytrace import bresenham
 
 
 class Nav2Costmap(Costmap):
@@ -44,6 +47,21 @@ class Nav2Costmap(Costmap):
         """The inflated costs as MPPI's critics read them."""
         resolution = self.settings.resolution
         return CostGrid(self.costs(), self.origin, resolution, self.settings.track_unknown_space)
+
+    def footprint_cost(self, outline: FloatArray) -> int:
+        """FootprintCollisionChecker::footprintCost of a footprint placed in the world (V, 2) m:
+        the highest cost of the cells each edge runs through, cell by cell as lineCost's
+        LineIterator steps (Bresenham's, as raytracing's), before inflation, which never
+        raises a cell to lethal; lethal if a corner lies off the window
+        (nav2_costmap_2d/src/footprint_collision_checker.cpp:48-104 at jazzy f4108e5b)."""
+        x, y, inside = self.cell_of(outline)
+        if not inside.all():
+            return LETHAL
+        end_x, end_y = np.roll(x, -1), np.roll(y, -1)
+        steps = np.maximum(np.abs(end_x - x), np.abs(end_y - y))
+        cells = self.settings.cells
+        visited = bresenham(x, y, end_x, end_y, steps, cells)
+        return int(self.combined()[visited // cells, visited % cells].max())
 
     def _geometry(self) -> Window:
         cells = self.settings.cells

@@ -34,10 +34,17 @@ class ConstraintCritic:
     weight: float = 4.0
     power: int = 1
 
-    def __call__(self, data: CriticData) -> None:
+    @property
+    def max_vel_constraint(self) -> float:  # m/s, getMaxVelConstraint
+        return math.hypot(self.settings.vx_max, self.settings.vy_max)
+
+    @property
+    def min_vel_constraint(self) -> float:  # m/s, getMinVelConstraint
         s = self.settings
-        fastest = math.hypot(s.vx_max, s.vy_max)
-        slowest = math.copysign(math.hypot(s.vx_min, s.vy_max), s.vx_min if s.vx_min > 0 else -1)
+        return math.copysign(math.hypot(s.vx_min, s.vy_max), s.vx_min if s.vx_min > 0 else -1)
+
+    def __call__(self, data: CriticData) -> None:
+        fastest, slowest = self.max_vel_constraint, self.min_vel_constraint
         beyond = np.maximum(data.vx - fastest, 0.0) + np.maximum(slowest - data.vx, 0.0)
         data.costs += _powered(
             beyond.sum(axis=1) * np.float32(data.model_dt), self.weight, self.power

@@ -24,7 +24,8 @@ the command (zeros when none was legal, and then there is no command: NoLegalTra
 - Trajectories: ceil(max(|vx| sim_time / linear_granularity, |theta| sim_time /
   angular_granularity)) steps of equal time; each step's speed moves from the last toward the
   command by at most acc_lim (decel_lim) x dt; the pose moves along the heading of the step
-  before. include_last_point's repeated last pose is not stored: no default critic tells it apart.
+  before; with include_last_point (its default) the last pose once more, as generateTrajectory
+  appends it (standard_traj_generator.cpp:181-182).
 - Scoring: scoreTrajectory's short circuit (stop adding once a total passes the best so far)
   changes which trajectory wins in no case, every score being non-negative; here every critic
   scores every trajectory, and the winner is the one DWB picks.
@@ -121,6 +122,7 @@ class DwbSettings:
     oscillation_reset_dist: float = 0.05  # m (source default)
     oscillation_reset_angle: float = 0.2  # rad (source default)
     x_only_threshold: float = 0.05  # m/s, Oscillation's (source default)
+    include_last_point: bool = True  # (source default, standard_traj_generator.cpp:76)
 
     def __post_init__(self) -> None:
         if self.lookahead_time >= 0.0:
@@ -198,8 +200,9 @@ def _valid_speeds(s: DwbSettings, speed_sq: F64, theta: F64) -> Bools:
 
 
 def roll_out(s: DwbSettings, pose: Pose, speed: tuple[float, float], vx: F64, wz: F64) -> Rollouts:
-    """generateTrajectory for every command (K,), N = 1 + the most steps poses each. Time-major
-    inside, (S, K), where a running sum adds whole rows; the critics read (K, N) views."""
+    """generateTrajectory for every command (K,), N = 1 + the most steps poses each, one more
+    with include_last_point (the last repeated). Time-major inside, (S, K), where a running sum
+    adds whole rows; the critics read (K, N) views."""
     steps = np.ceil(
         np.maximum(
             np.abs(vx) * s.sim_time / s.linear_granularity,
@@ -218,6 +221,8 @@ def roll_out(s: DwbSettings, pose: Pose, speed: tuple[float, float], vx: F64, wz
     sin = np.sin(yaw[:-1], out=np.zeros(moving.shape), where=moving)
     x = _walk(pose[0], linear * cos * dt)
     y = _walk(pose[1], linear * sin * dt)
+    if s.include_last_point:
+        x, y, yaw = (np.vstack((walked, walked[-1:])) for walked in (x, y, yaw))
     return Rollouts(vx, wz, x.T, y.T, yaw.T)
 
 

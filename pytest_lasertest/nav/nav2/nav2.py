@@ -269,14 +269,14 @@ class Nav2:
         self._next["plan"] = -math.inf
 
     def _collides(self, pose: Pose) -> bool:
-        """Whether the footprint's outline at `pose` meets a lethal cell of the local costmap
-        (the behaviours' collision checker reads the outline)."""
-        outline = place(self.footprint, np.array(pose))
-        ends = np.roll(outline, -1, axis=0)
-        steps = np.linspace(0.0, 1.0, 8)[:, np.newaxis, np.newaxis]  # along each edge
-        points = (outline + steps * (ends - outline)).reshape(-1, 2)
-        x, y, inside = self.local.cell_of(points)
-        return bool((self.local.grid[y[inside], x[inside]] == LETHAL).any())
+        """Whether the footprint at `pose` is in collision for the behaviours' collision
+        checker (CostmapTopicCollisionChecker::isCollisionFree on the local costmap,
+        costmap_topic_collision_checker.cpp:58-98 at jazzy f4108e5b): a pose off the window, or
+        a cost of lethal or more (unknown) on the footprint's outline."""
+        _, _, inside = self.local.cell_of(np.array([pose[:2]]))
+        if not inside[0]:
+            return True
+        return self.local.footprint_cost(place(self.footprint, np.array(pose))) >= LETHAL
 
     @property
     def global_costmap(self) -> Nav2Costmap:

@@ -91,7 +91,7 @@ def test_from_rest_every_velocity_within_the_limits_is_sampled_but_standing_stil
 def test_a_trajectory_speeds_up_from_the_robots_speed_within_the_acceleration_limit() -> None:
     vx, wz = np.array([0.26]), np.array([0.0])
     rollouts = roll_out(SETTINGS, (0.0, 0.0, 0.0), (0.0, 0.0), vx, wz)
-    steps = np.diff(rollouts.x[0])  # m a step, 9 steps of 1.7 / 9 s
+    steps = np.diff(rollouts.x[0])[:-1]  # m a step, 9 steps of 1.7 / 9 s, and the repeat
     dt = SETTINGS.sim_time / 9
     assert len(steps) == 9
     assert np.allclose(steps[0], min(0.26, SETTINGS.acc_lim_x * dt) * dt)
