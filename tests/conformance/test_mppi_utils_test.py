@@ -182,7 +182,10 @@ class Smoothed:
         self.vx = (np.float32(0.2) + noise[:30]).astype(np.float32)
         self.wz = (np.float32(0.3) + noise[60:]).astype(np.float32)
         self.history = np.array([[0.0, 0.0], [0.1, 0.3], [0.1, 0.3], [0.1, 0.3]], np.float32)
-        optimizer = Optimizer(MppiSettings(time_steps=30), [], np.random.default_rng(0))
+        # shift_control_sequence false, "so result stores 0th value in history": a controller
+        # period shorter than model_dt sets it so (Optimizer::setOffset).
+        settings = MppiSettings(time_steps=30)
+        optimizer = Optimizer(settings, [], np.random.default_rng(0), shift=False)
         optimizer.vx[:], optimizer.wz[:] = self.vx, self.wz
         optimizer.history[:] = self.history
         optimizer._smooth()  # the filter has no entry of its own but this
@@ -198,18 +201,9 @@ def test_the_filter_moves_the_command_history_back_one() -> None:
 
 @UTILS.test("UtilsTests.SmootherTest", assertions=1)
 def test_the_newest_history_entry_is_a_smoothed_speed() -> None:
-    # Ours keeps the second command (0.150 m/s), Nav2's test the first (0.194 m/s):
-    # both lie within the test's 0.05 m/s of 0.2.
     assert Smoothed().history_after[3, 0] == pytest.approx(0.2, abs=0.05)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="the test sets shift_control_sequence false, so that the filter keeps the first "
-    "smoothed command in the history (utils.hpp savitskyGolayFilter, offset 0): wz 0.224 rad/s, "
-    "within 0.02 of 0.23; ours always shifts (nav2_params.yaml's controller_frequency 20 Hz "
-    "= 1 / model_dt) and keeps the second (mppi.py Optimizer._smooth): 0.184 rad/s",
-)
 @UTILS.test("UtilsTests.SmootherTest", assertions=1)
 def test_the_newest_history_entry_is_the_smoothed_first_turn_rate() -> None:
     assert Smoothed().history_after[3, 1] == pytest.approx(0.23, abs=0.02)

@@ -24,6 +24,8 @@ from pytest_lasertest.model.geometry import FloatArray
 from pytest_lasertest.nav.protocol import LaserScan
 
 Command = tuple[float, float]  # m/s, rad/s
+Pose = tuple[float, float, float]  # m, m, rad
+Velocity = tuple[float, float, float]  # m/s along x and y of the frame moved in, rad/s
 # m: covers rounding, so a point kept in doubt is tested as Nav2 tests it.
 ROUNDING = 1e-9
 
@@ -89,23 +91,32 @@ def _collision_time(
 ) -> float | None:
     """getCollisionTime: the robot moved at the command, step by step, the velocity turning
     with it; the time of the first step whose footprint holds min_points, or None."""
-    x = y = heading = 0.0
-    velocity_x, velocity_y = command[0], 0.0
+    pose: Pose = (0.0, 0.0, 0.0)
+    velocity: Velocity = (command[0], 0.0, command[1])
     dt, time = settings.simulation_time_step, 0.0
     while time <= settings.time_before_collision:  # the time accumulates as Nav2's loop does
-        turn = command[1] * dt
-        x, y, heading = x + velocity_x * dt, y + velocity_y * dt, heading + turn
-        velocity_x, velocity_y = (
-            velocity_x * math.cos(turn) - velocity_y * math.sin(turn),
-            velocity_x * math.sin(turn) + velocity_y * math.cos(turn),
-        )
-        cos, sin = math.cos(heading), math.sin(heading)
-        moved_x, moved_y = points[:, 0] - x, points[:, 1] - y
-        seen = np.column_stack([moved_x * cos + moved_y * sin, -moved_x * sin + moved_y * cos])
-        if _inside(seen, footprint) >= settings.min_points:
+        pose, velocity = project_state(dt, pose, velocity)
+        if _inside(transform_points(pose, points), footprint) >= settings.min_points:
             return time
         time += dt
     return None
+
+
+def transform_points(pose: Pose, points: FloatArray) -> FloatArray:
+    """transformPoints: the points (P, 2) m seen from a frame at `pose` (kinematics.cpp)."""
+    cos, sin = math.cos(pose[2]), math.sin(pose[2])
+    moved_x, moved_y = points[:, 0] - pose[0], points[:, 1] - pose[1]
+    return np.column_stack([moved_x * cos + moved_y * sin, -moved_x * sin + moved_y * cos])
+
+
+def project_state(dt: float, pose: Pose, velocity: Velocity) -> tuple[Pose, Velocity]:
+    """projectState: the pose moved by the velocity for dt and turned by its turn rate, and
+    the velocity turned with it (kinematics.cpp)."""
+    x, y, turn_rate = velocity
+    turn = turn_rate * dt
+    moved = (pose[0] + x * dt, pose[1] + y * dt, pose[2] + turn)
+    cos, sin = math.cos(turn), math.sin(turn)
+    return moved, (x * cos - y * sin, x * sin + y * cos, turn_rate)
 
 
 def _inside(points: FloatArray, polygon: FloatArray) -> int:
