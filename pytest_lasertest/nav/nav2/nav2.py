@@ -9,8 +9,9 @@ Nav2's servers do on their clocks:
   each new scan through Nav2's obstacle layer, marking by the release's rule;
 - every second the tree's ComputePathToPose plans again with NavFn (tolerance 0.5 m, unknown
   space allowed), once more after clearing the global costmap if it finds no plan;
-- the controller server (20 Hz) runs FollowPath, MPPI or DWB, on the plan pruned from the
-  point nearest the robot up to prune_distance along it; the goal checker ends each goal at
+- the controller server (20 Hz) runs FollowPath, MPPI or DWB: MPPI on the part of the plan its
+  path handler gives (`path_handler.py`), DWB on the plan from the point nearest the robot up
+  to prune_distance along it; the goal checker ends each goal at
   xy_goal_tolerance; the progress checker (0.5 m in 10 s) or a controller with no valid command
   fails FollowPath, which runs once more after clearing the local costmap;
 - a failure past those makes the tree recover with the next of its round robin (clear both
@@ -50,6 +51,7 @@ from pytest_lasertest.nav.nav2.critics import ConstraintCritic
 from pytest_lasertest.nav.nav2.dwb import DwbController
 from pytest_lasertest.nav.nav2.mppi import F32, SAME_PERIOD, Critic, Optimizer
 from pytest_lasertest.nav.nav2.params import configured
+from pytest_lasertest.nav.nav2.path_handler import max_costmap_dist, transform_path
 from pytest_lasertest.nav.nav2.settings import CostmapConfig, Nav2Settings
 from pytest_lasertest.nav.nav2.velocity_smoother import VelocitySmoother
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
@@ -80,6 +82,7 @@ class Nav2:
         self._global: Nav2Costmap | None = None  # made at the first scan, around the route
         self._map: OccupancyGrid | None = None  # the world's map, if it has one
         self.plan: FloatArray = np.zeros((0, 2))  # m
+        self._handled: FloatArray = np.zeros((0, 2))  # m, the plan as MPPI's path handler keeps it
         self.failed: str | None = None  # why the navigation stopped, if it did
         self._command = (0.0, 0.0)
         self._next = dict.fromkeys(("local", "global", "plan", "cycle", "behavior"), -math.inf)
@@ -327,7 +330,11 @@ class Nav2:
             return None  # FAILED_TO_MAKE_PROGRESS
         if not len(self.plan):
             return 0.0, 0.0
-        path = self._pruned(pose)
+        path = (
+            self._pruned(pose) if isinstance(self.controller, DwbController) else self._path(pose)
+        )
+        if not len(path):
+            return None  # MPPI's InvalidPath: no pose of the plan on the local costmap
         # None: NO_VALID_CONTROL, every sample colliding.
         return self.controller.command(pose, speed, path, (goal.x, goal.y), self.local.cost_grid())
 
@@ -360,13 +367,28 @@ class Nav2:
         )
         if plan is None:
             return False
-        self.plan = plan
+        self.plan = self._handled = plan  # the controller server's setPlan hands it on
         if isinstance(self.controller, DwbController):
             self.controller.set_plan()  # the controller server's setPlan, at each new path
         return True
 
+    def _path(self, pose: Pose) -> F32:
+        """MPPI's path handler's part of the plan for this cycle (`path_handler.py`), the plan
+        it keeps pruned of the poses behind the robot."""
+        s, local = self.settings, self.local
+        search = s.max_robot_pose_search_dist
+        if search is None:
+            search = max_costmap_dist(local.settings.cells, local.settings.resolution)
+        handled = transform_path(
+            self._handled, pose, search, s.prune_distance, lambda p: local.cell_of(p)[2]
+        )
+        self._handled = handled.plan
+        path: F32 = handled.path.astype(np.float32)
+        return path
+
     def _pruned(self, pose: Pose) -> F32:
-        """The plan from its point nearest the robot, up to prune_distance along it."""
+        """DWB's plan: from its point nearest the robot, up to prune_distance along it (DWB
+        prunes it further itself, `dwb.local_plan`)."""
         away = np.hypot(self.plan[:, 0] - pose[0], self.plan[:, 1] - pose[1])
         path = self.plan[int(np.argmin(away)) :]
         steps = np.hypot(*np.diff(path, axis=0).T)

@@ -131,7 +131,14 @@ def _mppi(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
         mppi=mppi,
         critics=_critics(node, settings.critics),
         prune_distance=node.number("FollowPath.prune_distance", settings.prune_distance),
+        max_robot_pose_search_dist=_search_distance(node, settings.max_robot_pose_search_dist),
     )
+
+
+def _search_distance(node: NodeParameters, default: float | None) -> float | None:
+    """FollowPath.max_robot_pose_search_dist, if the file sets it."""
+    name = "FollowPath.max_robot_pose_search_dist"
+    return node.number(name, 0.0) if name in node.values else default
 
 
 def _check_period(node: NodeParameters, frequency: float, model_dt: float) -> None:

@@ -151,6 +151,9 @@ class Nav2Settings:
     controller_frequency: float = 20.0  # Hz
     replan_period: float = 1.0  # s, the behaviour tree's RateController
     prune_distance: float = 1.7  # m
+    # MPPI's path handler's bound on its search for the plan's pose nearest the robot; None:
+    # half the local costmap's side, its default (path_handler.cpp getMaxCostmapDist).
+    max_robot_pose_search_dist: float | None = None  # m
     xy_goal_tolerance: float = 0.25  # m
     required_movement_radius: float = 0.5  # m
     movement_time_allowance: float = 10.0  # s
