@@ -136,8 +136,11 @@ def _located(
 ) -> SpecError:
     """The problem at its parameter's line, or at its node's when the parameter is not set."""
     node = where.get((problem.node, problem.name))
-    if node is None:
-        node = next((n for (name, _), n in where.items() if name == problem.node), root)
-        field = f"{problem.node}.{problem.name}"
-        return SpecError(node.location, field, f"{problem.name}: {problem.problem}", problem.fix)
-    return node.error(problem.problem, problem.fix)
+    if node is not None:
+        return node.error(problem.problem, problem.fix)
+    field = f"{problem.node}.{problem.name}"
+    in_node = next((n for (name, _), n in where.items() if name == problem.node), None)
+    if in_node is None:
+        why = f"{problem.problem} (the file has no {problem.node} node: Nav2 runs it on its defaults)"
+        return SpecError(root.location, field, why, problem.fix)
+    return SpecError(in_node.location, field, problem.problem, problem.fix)

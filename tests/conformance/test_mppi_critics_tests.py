@@ -1,7 +1,6 @@
 """nav2_mppi_controller's critic tests (critics_tests.cpp), rebuilt on our critics
 (pytest_lasertest/nav/nav2/critics.py) as a params file that lists the critic builds it: its
-parameters the test leaves at Nav2's code defaults take our defaults (nav2_bringup's
-nav2_params.yaml), and where that changes a figure the test is a strict xfail naming both.
+parameters the test leaves out take Nav2's code defaults there too.
 
 Not applicable: the getName checks (plugin names), the Ackermann half of ConstraintsCritic,
 PathAngleCritic's mode 2 and modeToStr (only modes 0 and 1 are imitated), the ObstaclesCritic,
@@ -104,11 +103,6 @@ def test_near_the_goal_each_trajectory_costs_its_mean_distance_to_it_x_weight() 
 
 # PathAngleCritic: the robot at (0, 0) heading along x, the goal 0.95 m ahead, the samples
 # reaching path point 2, so that the critic aims at point 2 + offset_from_furthest 4 = 6.
-ANGLE_DEFAULTS = (
-    "the test leaves PathAngleCritic's cost_weight to the critic's own 2.2 "
-    "(path_angle_critic.cpp:39; max_angle_to_furthest 0.785 rad, :45), giving {upstream}; a "
-    "params file without them gives ours nav2_params.yaml's weight 2.0 (and 1.0 rad), so {ours}"
-)
 
 
 def aiming_at(point: tuple[float, float]) -> CriticData:
@@ -141,9 +135,6 @@ def test_a_point_far_off_the_heading_costs_something() -> None:
     assert path_angle(mode=0).costs.sum() > 0.0
 
 
-@pytest.mark.xfail(
-    strict=True, reason=ANGLE_DEFAULTS.format(upstream="1.816 x 2.2 = 3.995", ours="3.632")
-)
 @CRITICS.test("CriticTests.PathAngleCritic", assertions=1)
 def test_a_point_far_off_the_heading_costs_the_angle_x_weight() -> None:
     assert path_angle(mode=0).costs[0] == pytest.approx(3.9947, abs=1e-2)
@@ -163,9 +154,6 @@ def test_without_direction_preference_a_point_far_off_both_ways_costs_something(
     assert path_angle(mode=1).costs.sum() > 0.0
 
 
-@pytest.mark.xfail(
-    strict=True, reason=ANGLE_DEFAULTS.format(upstream="1.326 x 2.2 = 2.917", ours="2.652")
-)
 @CRITICS.test("CriticTests.PathAngleCritic", assertions=1)
 def test_without_direction_preference_the_cost_is_the_angle_off_reversing_x_weight() -> None:
     assert path_angle(mode=1).costs[0] == pytest.approx(2.9167, abs=1e-2)
@@ -255,12 +243,6 @@ def aligned_22_points() -> CriticData:
     return data
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="the test leaves PathAlignCritic's cost_weight to the critic's own 10.0 "
-    "(path_align_critic.cpp:27): 0.66 m x 10 x 1000 = 6600; a params file without it gives ours "
-    "nav2_params.yaml's 14.0, so 9240",
-)
 @CRITICS.test("CriticTests.PathAlignCritic", assertions=1)
 def test_each_trajectory_costs_its_mean_distance_to_the_path_x_weight() -> None:
     assert path_align(aligned_22_points()) == pytest.approx(6600.0, abs=1e-2)

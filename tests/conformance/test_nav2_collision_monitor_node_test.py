@@ -1,6 +1,7 @@
 """nav2_collision_monitor's node tests (test/collision_monitor_node_test.cpp), where they test an
 approach polygon on the footprint, rebuilt on our `approach` with the points the node's source
-would hand it; and the node's refusals to configure, rebuilt on `params.configure`.
+would hand it; and the node's refusals to configure, rebuilt on `params.configure` (a params
+file whose collision_monitor sets the test's parameters, tests/helpers/nav2_params.py).
 
 testProcessApproachRotation reads a range sensor, which our monitor does not: the points are
 made here as Range::getData makes them (the reading spread over the sensor's field of view),
@@ -25,7 +26,7 @@ import pytest
 from pytest_lasertest.model.robot import ParameterValue
 from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings, approach
 from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
-from pytest_lasertest.nav.nav2.params import configure
+from tests.helpers.nav2_params import nav2_settings
 from tests.helpers.upstream import NAVIGATION2_JAZZY, Source
 
 NODE = Source(
@@ -73,8 +74,7 @@ def test_turning_toward_an_obstacle_slows_the_turn_so_it_is_reached_in_time() ->
 
 def configured(parameters: dict[str, ParameterValue]) -> CollisionMonitorSettings | None:
     """The monitor a params file with these collision_monitor parameters makes."""
-    config = configure([("collision_monitor", k, v) for k, v in parameters.items()])
-    return config.settings.collision_monitor
+    return nav2_settings({"collision_monitor": parameters}).collision_monitor
 
 
 # addPolygon's and addSource's parameters for an approach polygon on a scan. Upstream's
@@ -123,14 +123,8 @@ def test_a_source_of_unknown_type_is_refused() -> None:
 
 
 @NODE.test("Tester.testPolygonsNotSet", assertions=1)
-@pytest.mark.xfail(
-    strict=True,
-    reason="Nav2 declares polygons without a default and refuses to configure without it "
-    "(collision_monitor_node.cpp:304-306); our params reader defaults it to "
-    '["FootprintApproach"], nav2_params.yaml\'s (params.py:262), and runs that polygon',
-)
 def test_a_monitor_without_polygons_is_refused() -> None:
-    with pytest.raises(ParameterProblem):
+    with pytest.raises(ParameterProblem, match="collision_monitor: polygons: is not set"):
         # As upstream: a stop polygon defined but not listed, which our reader never reads.
         configured(
             {
@@ -143,12 +137,6 @@ def test_a_monitor_without_polygons_is_refused() -> None:
 
 
 @NODE.test("Tester.testSourcesNotSet", assertions=1)
-@pytest.mark.xfail(
-    strict=True,
-    reason="Nav2 declares observation_sources without a default and refuses to configure "
-    "without it (collision_monitor_node.cpp:357-359); our params reader defaults it to "
-    '["scan"], nav2_params.yaml\'s (params.py:276), and reads the scan',
-)
 def test_a_monitor_without_observation_sources_is_refused() -> None:
-    with pytest.raises(ParameterProblem):
+    with pytest.raises(ParameterProblem, match="collision_monitor: observation_sources: is not"):
         configured({"polygons": ("Approach",), "Approach.type": "polygon", **APPROACH, **SCAN})

@@ -19,13 +19,12 @@ import numpy as np
 import pytest
 
 from pytest_lasertest.model.geometry import Point2D
-from pytest_lasertest.model.robot import ParameterValue
 from pytest_lasertest.nav.move_base.cost_values import FREE, LETHAL
 from pytest_lasertest.nav.move_base.costmap import CostmapSettings
 from pytest_lasertest.nav.nav2.nav2 import Nav2
 from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
-from pytest_lasertest.nav.nav2.params import configure
 from pytest_lasertest.nav.nav2.settings import CostmapConfig, Nav2Settings
+from tests.helpers.nav2_params import local_footprint
 from tests.helpers.paper import PAPER
 from tests.helpers.upstream import NAVIGATION2_JAZZY, NotPorted, Source
 
@@ -108,14 +107,10 @@ def test_a_footprint_meets_a_lethal_cell_in_the_middle_of_its_edge() -> None:
     assert two_lethal_cells()._collides((5.2, 5.0, 0.0))
 
 
-def footprint(text: str) -> tuple[tuple[float, float], ...] | None:
+def footprint(text: str) -> tuple[tuple[float, float], ...]:
     """The local costmap's footprint (m) of a params file whose `footprint` is `text`,
     unpadded (makeFootprintFromString does not pad)."""
-    parameters: list[tuple[str, str, ParameterValue]] = [
-        ("local_costmap", "footprint", text),
-        ("local_costmap", "footprint_padding", 0.0),
-    ]
-    return configure(parameters).settings.local.footprint
+    return local_footprint({"footprint": text, "footprint_padding": 0.0})
 
 
 @FOOTPRINT.test("collision_footprint.make_footprint_from_string", assertions=10)

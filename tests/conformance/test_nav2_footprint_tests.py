@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 
 from pytest_lasertest.model.robot import ParameterValue
-from pytest_lasertest.nav.nav2.params import configure
+from tests.helpers.nav2_params import local_footprint
 from tests.helpers.upstream import NAVIGATION2_JAZZY, Source
 
 FOOTPRINT = Source(
@@ -22,22 +22,12 @@ FOOTPRINT = Source(
 TRIANGLE = "[[1, 1], [-1, 1], [-1, -1]]"
 
 
-def footprint(**parameters: ParameterValue) -> tuple[tuple[float, float], ...] | None:
-    """The local costmap's footprint (m) that a params file setting `parameters` of
-    local_costmap makes; None where it keeps the robot's own."""
-    settings = configure(("local_costmap", name, value) for name, value in parameters.items())
-    return settings.settings.local.footprint
+def footprint(**parameters: ParameterValue) -> tuple[tuple[float, float], ...]:
+    """The local costmap's footprint (m) a params file setting `parameters` of it makes."""
+    return local_footprint(parameters)
 
 
 @FOOTPRINT.test("TestNode.footprint_empty", assertions=1)
-@pytest.mark.xfail(
-    strict=True,
-    reason="upstream: a costmap given neither footprint nor robot_radius is the 16-point "
-    "circle of robot_radius's default 0.1 m (nav2_costmap_2d/src/costmap_2d_ros.cpp:128 "
-    "declares it, :252 makes the footprint of it); ours keeps the robot's own footprint "
-    "(costmap_params._footprint returns None: settings.py, the robot's footprint stands "
-    "where the file sets neither)",
-)
 def test_a_costmap_given_neither_footprint_nor_radius_is_a_circle_of_16_points() -> None:
     points = footprint(resolution=0.05)  # the file sets the costmap, not its footprint
     assert points is not None
@@ -46,15 +36,14 @@ def test_a_costmap_given_neither_footprint_nor_radius_is_a_circle_of_16_points()
 
 @FOOTPRINT.test("TestNode.footprint_empty", assertions=1)
 def test_the_default_radius_circle_is_padded_to_0_11_m() -> None:
-    # robot_radius given at its upstream default, which our reader lacks (the test above).
-    points = footprint(robot_radius=0.1)
+    points = footprint(resolution=0.05)
     assert points is not None
     assert points[0][0] == pytest.approx(0.11, abs=0.0001)
 
 
 @FOOTPRINT.test("TestNode.footprint_empty", assertions=1)
 def test_the_default_radius_circle_starts_on_the_x_axis() -> None:
-    points = footprint(robot_radius=0.1)
+    points = footprint(resolution=0.05)
     assert points is not None
     assert points[0][1] == pytest.approx(0.0, abs=0.0001)
 

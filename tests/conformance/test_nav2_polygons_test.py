@@ -1,6 +1,7 @@
 """nav2_collision_monitor's polygon tests (test/polygons_test.cpp), rebuilt on our collision
 monitor (`collision_monitor.py`: `approach` and its ray-crossing count `_inside`) and on the
-collision_monitor node's parameters as `params.configure` reads them.
+collision_monitor node's parameters as `params.configure` reads them (in a params file whose
+collision_monitor sets the test's parameters, tests/helpers/nav2_params.py).
 
 A collision time is read off `approach`'s answer: the command scaled by that time over
 time_before_collision, as processApproach scales it; a negative time (no collision) is the
@@ -24,7 +25,7 @@ from pytest_lasertest.nav.nav2.collision_monitor import (
     approach,
 )
 from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
-from pytest_lasertest.nav.nav2.params import configure
+from tests.helpers.nav2_params import nav2_settings
 from tests.helpers.upstream import NAVIGATION2_JAZZY, Source
 
 POLYGONS = Source(
@@ -64,8 +65,7 @@ def monitor(polygon: dict[str, ParameterValue]) -> CollisionMonitorSettings | No
         "source.type": "scan",
         **{f"TestPolygon.{name}": value for name, value in polygon.items()},
     }
-    config = configure([("collision_monitor", k, v) for k, v in parameters.items()])
-    return config.settings.collision_monitor
+    return nav2_settings({"collision_monitor": parameters}).collision_monitor
 
 
 @POLYGONS.test("Tester.testPolygonGetPointsInside", assertions=2)
@@ -132,15 +132,10 @@ def test_an_unknown_action_type_is_refused() -> None:
 
 
 @POLYGONS.test("Tester.testPolygonUndeclaredActionType", assertions=1)
-@pytest.mark.xfail(
-    strict=True,
-    reason="Nav2 declares a polygon's action_type without a default and refuses to configure "
-    "a polygon that does not set it (polygon.cpp:332-335); our params reader defaults it to "
-    '"approach" (params.py:266), so the polygon runs as an approach polygon',
-)
 def test_a_polygon_without_an_action_type_is_refused() -> None:
-    with pytest.raises(ParameterProblem):
+    with pytest.raises(ParameterProblem) as refused:
         monitor({"type": "polygon"})
+    assert refused.value.name == "TestPolygon.action_type"
 
 
 @POLYGONS.test("Tester.testPolygonMaxPoints", assertions=1)

@@ -18,8 +18,8 @@ import pytest
 
 from pytest_lasertest.model.robot import ParameterValue
 from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
-from pytest_lasertest.nav.nav2.params import configure
 from pytest_lasertest.nav.nav2.velocity_smoother import VelocitySmoother
+from tests.helpers.nav2_params import nav2_settings
 from tests.helpers.upstream import NAVIGATION2_JAZZY, Source
 
 SMOOTHER = Source(
@@ -37,7 +37,7 @@ DV_DECEL = -DECEL / FREQUENCY  # m/s per tick
 
 def smoother(**parameters: ParameterValue) -> VelocitySmoother:
     """Our smoother as a params file setting only `parameters` for velocity_smoother makes it."""
-    settings = configure([("velocity_smoother", k, v) for k, v in parameters.items()]).settings
+    settings = nav2_settings({"velocity_smoother": parameters})
     return VelocitySmoother(settings.smoother)
 
 

@@ -181,12 +181,15 @@ def test_a_point_below_the_costmaps_origin_is_off_it() -> None:
 
 
 def test_near_the_goal_only_critical_costs_count() -> None:
-    # cost_critic.cpp:151-154, 199-203: within near_goal_distance (1.0 m, nav2_params.yaml) of
+    # cost_critic.cpp:151-154, 199-203: within near_goal_distance (1.0 m here) of
     # the goal the ordinary costs add nothing, but critical ones still add critical_cost. (At
     # the default near_collision_cost 253 only a tracked unknown cell is critical without
     # colliding: 253 is INSCRIBED, a collision; so it is lowered to 200 here, 252 critical.)
     grid = costs_along_row({10: SOME_COST, 12: 252})
-    lowered = {"FollowPath.CostCritic.near_collision_cost": 200}
+    lowered = {
+        "FollowPath.CostCritic.near_collision_cost": 200,
+        "FollowPath.CostCritic.near_goal_distance": 1.0,
+    }
     near = run_cost_critic(grid, [list(range(10, 20))], goal=(0.99, 0.0), parameters=lowered)
     far = run_cost_critic(grid, [list(range(10, 20))], goal=(1.0, 0.0), parameters=lowered)
     assert near.costs[0] == pytest.approx(CRITICAL * upstream_scale(), rel=1e-6)

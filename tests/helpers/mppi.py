@@ -11,20 +11,19 @@ import numpy as np
 from pytest_lasertest.model.robot import ParameterValue
 from pytest_lasertest.nav.nav2.mppi import F32, CostGrid, Critic, CriticData, Optimizer
 from pytest_lasertest.nav.nav2.nav2 import _follow_path
-from pytest_lasertest.nav.nav2.params import configure
+from pytest_lasertest.nav.nav2.params import MPPI
 from pytest_lasertest.nav.nav2.settings import Nav2Settings
+from tests.helpers import nav2_params as params
 
 NO_PARAMETERS: Mapping[str, ParameterValue] = {}
 
 
 def nav2_settings(controller_server: Mapping[str, ParameterValue]) -> Nav2Settings:
-    """The settings of a params file that sets only these controller_server parameters
-    ("controller_frequency", "FollowPath.vx_max", ...): each one it leaves out keeps our
-    default, as a team's file that omits it would."""
-    parameters = tuple(
-        ("controller_server", name, value) for name, value in controller_server.items()
-    )
-    return configure(parameters).settings
+    """The settings of a params file whose controller_server runs MPPI and sets only these
+    parameters ("controller_frequency", "FollowPath.vx_max", ...): each one it leaves out
+    takes Nav2's code default, as a team's file that omits it would."""
+    server = {"FollowPath.plugin": MPPI, **controller_server}
+    return params.nav2_settings({"controller_server": server})
 
 
 def critic(name: str, controller_server: Mapping[str, ParameterValue] = NO_PARAMETERS) -> Critic:

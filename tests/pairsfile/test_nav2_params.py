@@ -13,6 +13,7 @@ import pytest
 from pytest_lasertest.inputs.errors import SpecError
 from pytest_lasertest.nav.nav2.obstacle_layer import Marking
 from pytest_lasertest.nav.nav2.params import configure
+from pytest_lasertest.nav.nav2.settings import Nav2Settings
 from pytest_lasertest.pairsfile.pairs import load_pairs_file
 from tests.helpers import REPO
 from tests.helpers.runs import Case
@@ -62,6 +63,17 @@ velocity_smoother:
 collision_monitor:
   ros__parameters:
     FootprintApproach: {type: "polygon", action_type: "approach"}
+    polygons: ["FootprintApproach"]
+    observation_sources: ["scan"]
+global_costmap:
+  global_costmap:
+    ros__parameters:
+      plugins: ["obstacle_layer", "inflation_layer"]
+      inflation_layer: {plugin: "nav2_costmap_2d::InflationLayer"}
+      obstacle_layer:
+        plugin: "nav2_costmap_2d::ObstacleLayer"
+        observation_sources: scan
+        scan: {data_type: "LaserScan", max_obstacle_height: 2.0, clearing: true}
 """
 
 
@@ -71,7 +83,7 @@ def load(tmp_path: Path, team: str = TEAM, pairs: str = PAIRS) -> object:
     return load_pairs_file(tmp_path / "gate.lasertest.yaml")
 
 
-def test_a_teams_params_file_sets_the_nav2_imitation_and_jazzy_keeps_the_rest(
+def test_a_teams_params_file_sets_the_nav2_imitation_and_nav2s_code_defaults_the_rest(
     tmp_path: Path,
 ) -> None:
     robot = load(tmp_path).robot  # type: ignore[attr-defined]
@@ -96,7 +108,19 @@ def test_a_teams_params_file_sets_the_nav2_imitation_and_jazzy_keeps_the_rest(
     assert np.allclose(
         s.local.footprint, [(0.56, 0.46), (0.56, -0.46), (-0.56, -0.46), (-0.56, 0.46)]
     )
-    assert s.global_.footprint is None  # not set: the robot's own
+    # What the file leaves out takes Nav2's code default, not nav2_params.yaml's:
+    assert s.local.costmap.cost_scaling_factor == 10.0  # inflation_layer.cpp:94
+    assert s.local.costmap.resolution == 0.1  # costmap_2d_ros.cpp:126
+    assert not s.local.source.clearing  # obstacle_layer.cpp:153
+    assert s.local.source.max_obstacle_height == 0.0  # obstacle_layer.cpp:150
+    assert s.prune_distance == 1.5  # path_handler.cpp:38
+    assert s.smoother.max_velocity == (0.5, 2.5)  # velocity_smoother.cpp:64-65
+    assert s.collision_monitor is not None
+    assert (s.collision_monitor.min_points, s.collision_monitor.time_before_collision) == (4, 2.0)
+    # No footprint and no robot_radius: robot_radius's 0.1 m circle, padded.
+    assert s.global_.footprint is not None
+    assert len(s.global_.footprint) == 16
+    assert s.global_.footprint[0][0] == pytest.approx(0.11)
     assert s.marking is Marking.CELLS_PREFILTERED
     assert config.unmodelled == ("amcl: every parameter (1)",)
 
@@ -142,7 +166,7 @@ def test_the_global_costmap_keeps_unknown_space_only_without_a_static_layer(
 ) -> None:
     # With a static layer the open world's map is known free; without one (Nav2's
     # nav2_no_map_params.yaml) only what a scan clears is known.
-    team = GLOBAL.format(plugins=plugins)
+    team = TEAM[: TEAM.index("global_costmap:")] + GLOBAL.format(plugins=plugins)
     robot = load(tmp_path, team=team).robot  # type: ignore[attr-defined]
     settings = configure(robot.nav2, robot.nav2_release).settings
     assert settings.global_.costmap.track_unknown_space is unknown
@@ -323,6 +347,31 @@ CASES = {
         "a parameter's value is a number, true or false, a string or a list, not",
         "leave the parameter out to keep Nav2's default",
     ),
+    # What Nav2's code leaves without a default, or gives one only for its default list.
+    "FollowPath left to its default plugin, DWB, with MPPI's critics": Case(
+        'plugin: "nav2_mppi_controller::MPPIController"',
+        "# plugin: left to the default",
+        8,
+        "controller_server.ros__parameters.FollowPath.critics",
+        "ConstraintCritic is a critic the DWB imitation does not have",
+        "leave it out, or use those it has",
+    ),
+    "a collision monitor without polygons": Case(
+        '    polygons: ["FootprintApproach"]',
+        "    # polygons: left out",
+        32,
+        "collision_monitor.polygons",
+        "is not set: Nav2's collision monitor refuses to configure without it",
+        "or leave the collision_monitor node out of the file to run none",
+    ),
+    "a layer of a list other than the default without its plugin": Case(
+        '      inflation_layer: {plugin: "nav2_costmap_2d::InflationLayer"}',
+        "      inflation_layer: {cost_scaling_factor: 3.0}",
+        38,
+        "global_costmap.inflation_layer.plugin",
+        "is not set: Nav2 refuses to configure without it",
+        "write inflation_layer.plugin: nav2_costmap_2d::ObstacleLayer or",
+    ),
 }
 
 
@@ -338,6 +387,67 @@ def test_a_broken_params_file_is_one_error_naming_its_line_parameter_and_fix(
     assert (error.location.line, error.field) == (case.line, case.field)
     assert case.problem in error.problem
     assert case.fix in error.fix
+
+
+def test_a_file_without_the_controller_server_node_is_an_error_saying_nav2_would_run_dwb(
+    tmp_path: Path,
+) -> None:
+    team = TEAM[TEAM.index("local_costmap:") :]
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, team=team)
+    error = raised.value
+    assert (error.location.line, error.field) == (1, "controller_server.FollowPath.critics")
+    assert "the file has no controller_server node: Nav2 runs it on its defaults" in error.problem
+
+
+def test_a_file_without_the_collision_monitor_node_runs_none(tmp_path: Path) -> None:
+    team = TEAM[: TEAM.index("collision_monitor:")] + TEAM[TEAM.index("global_costmap:") :]
+    robot = load(tmp_path, team=team).robot  # type: ignore[attr-defined]
+    assert configure(robot.nav2, robot.nav2_release).settings.collision_monitor is None
+
+
+def test_humbles_collision_monitor_without_polygons_runs_none_and_jazzys_refuses(
+    tmp_path: Path,
+) -> None:
+    team = TEAM.replace('    polygons: ["FootprintApproach"]\n', "")
+    humble = PAIRS.replace("nav2_version: jazzy", "nav2_version: humble")
+    robot = load(tmp_path, team=team, pairs=humble).robot  # type: ignore[attr-defined]
+    assert configure(robot.nav2, robot.nav2_release).settings.collision_monitor is None
+    with pytest.raises(SpecError, match="polygons"):
+        load(tmp_path, team=team)
+
+
+def test_a_costmap_without_plugins_runs_nav2s_default_layers(tmp_path: Path) -> None:
+    # static_layer, obstacle_layer and inflation_layer, of their default types: the
+    # obstacle_layer's and inflation_layer's parameters the file sets are read.
+    team = TEAM.replace('      plugins: ["obstacle_layer", "inflation_layer"]\n', "", 1)
+    robot = load(tmp_path, team=team).robot  # type: ignore[attr-defined]
+    local = configure(robot.nav2, robot.nav2_release).settings.local
+    assert local.costmap.inflation_radius == 0.8
+    assert local.source.obstacle_max_range == 2.0
+
+
+def test_humbles_progress_checker_is_named_by_progress_checker_plugin(tmp_path: Path) -> None:
+    # controller_server.cpp:53 at humble 3c3db59d: one name, not Jazzy's list.
+    team = TEAM.replace(
+        "    controller_frequency: 40.0\n",
+        "    controller_frequency: 40.0\n    progress_checker_plugin: slow\n"
+        "    slow: {plugin: nav2_controller::SimpleProgressChecker,"
+        " movement_time_allowance: 20.0}\n",
+    )
+    humble = PAIRS.replace("nav2_version: jazzy", "nav2_version: humble")
+    robot = load(tmp_path, team=team, pairs=humble).robot  # type: ignore[attr-defined]
+    assert configure(robot.nav2, robot.nav2_release).settings.movement_time_allowance == 20.0
+
+
+def test_a_global_costmap_rolls_at_its_width_only_where_rolling_window_says_so(
+    tmp_path: Path,
+) -> None:
+    unique = '      inflation_layer: {plugin: "nav2_costmap_2d::InflationLayer"}\n'
+    rolling = TEAM.replace(unique, f"      rolling_window: true\n      width: 20\n{unique}")
+    for team, size in ((TEAM, Nav2Settings().global_.costmap.size), (rolling, 20.0)):
+        robot = load(tmp_path, team=team).robot  # type: ignore[attr-defined]
+        assert configure(robot.nav2, robot.nav2_release).settings.global_.costmap.size == size
 
 
 @pytest.mark.parametrize(

@@ -11,8 +11,7 @@ our own code:
 
 - the layer turns each map value into a cost once (interpretValue: the unknown value to 255 with
   its track_unknown_space, else free; from lethal_cost_threshold up lethal; the rest free with
-  trinary_costmap, else scaled by 254 / lethal_cost_threshold; Nav2 also turns its
-  inscribed_obstacle_cost_value into 253);
+  trinary_costmap, else scaled by 254 / lethal_cost_threshold);
 - in a rolling window the layer writes each window cell with the map cell under the cell's
   centre (worldToMap truncates), overwriting the master (updateWithTrueOverwrite's rule, unless
   use_maximum); a window cell off the map it does not write, and the master keeps what
@@ -32,7 +31,7 @@ import numpy as np
 
 from pytest_lasertest.model.geometry import IntArray
 from pytest_lasertest.model.occupancy import OccupancyGrid
-from pytest_lasertest.nav.move_base.cost_values import FREE, INSCRIBED, LETHAL, UNKNOWN, Grid
+from pytest_lasertest.nav.move_base.cost_values import FREE, LETHAL, UNKNOWN, Grid
 
 
 @dataclass(frozen=True)
@@ -47,14 +46,14 @@ class StaticLayerSettings:
     unknown_cost_value: int = -1  # the map value that means unknown, read as a byte: 255
     trinary_costmap: bool = True  # values below the threshold free, else scaled
     use_maximum: bool = False  # write with the larger cost, not overwrite
-    # Nav2's: the map value that means inscribed (253); ROS 1 has none.
-    inscribed_obstacle_cost_value: int | None = None
 
     @classmethod
     def nav2(cls, track_unknown_space: bool) -> StaticLayerSettings:
-        """Nav2's defaults (Costmap2DROS's constructor declares them: unknown_cost_value
-        0xff, inscribed_obstacle_cost_value 99) with the costmap's track_unknown_space."""
-        return cls(track_unknown_space, unknown_cost_value=0xFF, inscribed_obstacle_cost_value=99)
+        """Nav2's defaults (Costmap2DROS's constructor declares them: unknown_cost_value 0xff)
+        with the costmap's track_unknown_space. inscribed_obstacle_cost_value came after the
+        releases imitated (costmap_2d_ros.cpp at a3a97043 declares it; kilted 71a1d84f, jazzy
+        f4108e5b and humble 3c3db59d do not): a map's 99 is below the lethal threshold."""
+        return cls(track_unknown_space, unknown_cost_value=0xFF)
 
     def costs(self) -> Grid:
         """interpretValue as a table: the cost (256,) of each map value read as a byte, as the
@@ -64,8 +63,6 @@ class StaticLayerSettings:
         below = FREE if self.trinary_costmap else LETHAL * value / max(threshold, 1)
         # A double converted to unsigned char truncates.
         costs = np.where(value >= threshold, LETHAL, below).astype(np.uint8)
-        if self.inscribed_obstacle_cost_value is not None:
-            costs[self.inscribed_obstacle_cost_value & 0xFF] = INSCRIBED
         # Checked first: the unknown value is unknown (or free) whatever the thresholds say.
         costs[self.unknown_cost_value & 0xFF] = UNKNOWN if self.track_unknown_space else FREE
         return costs

@@ -6,22 +6,28 @@ inflation_layer.cpp at jazzy f4108e5b)."""
 from __future__ import annotations
 
 import dataclasses
-import math
 import re
 
 import numpy as np
 
 from pytest_lasertest.model.robot import pad_footprint
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
-from pytest_lasertest.nav.nav2.settings import CostmapConfig
+from pytest_lasertest.nav.nav2.settings import (
+    DEFAULT_FOOTPRINT_PADDING,
+    DEFAULT_ROBOT_RADIUS,
+    CostmapConfig,
+    radius_footprint,
+)
 
 OBSTACLE_LAYERS = ("nav2_costmap_2d::ObstacleLayer", "nav2_costmap_2d::VoxelLayer")
 INFLATION_LAYER = "nav2_costmap_2d::InflationLayer"
 STATIC_LAYER = "nav2_costmap_2d::StaticLayer"
 
 
-def read_costmap(node: NodeParameters, config: CostmapConfig) -> CostmapConfig:
-    """A costmap: its window, footprint and layers (one laser source, inflation, static)."""
+def read_costmap(node: NodeParameters, config: CostmapConfig, rolls: bool) -> CostmapConfig:
+    """A costmap: its window, footprint and layers (one laser source, inflation, static). A
+    costmap that `rolls` is a window of `width`; the global costmap, unless rolling_window
+    says it rolls, spans the map, here the window over the route `config` sets."""
     width = node.number("width", config.costmap.size)
     if node.number("height", width) != width:
         raise node.problem(
@@ -29,14 +35,14 @@ def read_costmap(node: NodeParameters, config: CostmapConfig) -> CostmapConfig:
             "differs from width; the imitation's rolling window is square",
             "write the same width and height",
         )
+    rolling = node.flag("rolling_window", False)  # costmap_2d_ros.cpp:129 at jazzy f4108e5b
     costmap = dataclasses.replace(
         config.costmap,
-        size=width,
+        size=width if rolls or rolling else config.costmap.size,
         resolution=node.number("resolution", config.costmap.resolution),
         update_frequency=node.number("update_frequency", config.costmap.update_frequency),
         track_unknown_space=node.flag("track_unknown_space", config.costmap.track_unknown_space),
     )
-    node.flag("rolling_window", True)
     config = dataclasses.replace(config, costmap=costmap, footprint=_footprint(node, config))
     return _layers(node, config)
 
@@ -44,35 +50,46 @@ def read_costmap(node: NodeParameters, config: CostmapConfig) -> CostmapConfig:
 def has_static_layer(node: NodeParameters) -> bool:
     """Whether the costmap has an enabled static layer: Costmap2DROS's default plugins
     (static, obstacle, inflation) do."""
-    if "plugins" not in node.values:
-        return True
     return any(
-        node.text(f"{name}.plugin", "").replace("/", "::") == STATIC_LAYER
-        and node.flag(f"{name}.enabled", True)
-        for name in node.names("plugins", ())
+        kind == STATIC_LAYER and node.flag(f"{name}.enabled", True)
+        for name, kind in layer_kinds(node).items()
     )
+
+
+# Costmap2DROS's plugins where the file names none, and their types (costmap_2d_ros.cpp:96-100,
+# 123, 424-429 at jazzy f4108e5b).
+DEFAULT_LAYERS = {
+    "static_layer": STATIC_LAYER,
+    "obstacle_layer": OBSTACLE_LAYERS[0],
+    "inflation_layer": INFLATION_LAYER,
+}
+
+
+def layer_kinds(node: NodeParameters) -> dict[str, str]:
+    """Each layer the costmap's `plugins` names, with its plugin type: the default layers'
+    default types for the default list, else the type each must name."""
+    plugins = node.names("plugins", tuple(DEFAULT_LAYERS))
+    default = plugins == tuple(DEFAULT_LAYERS)
+    imitated = (*OBSTACLE_LAYERS, INFLATION_LAYER, STATIC_LAYER)
+    return {
+        name: node.plugin(
+            name, imitated, "costmap layer", DEFAULT_LAYERS[name] if default else None
+        )
+        for name in plugins
+    }
 
 
 def _footprint(
     node: NodeParameters, config: CostmapConfig
 ) -> tuple[tuple[float, float], ...] | None:
-    """`footprint` (a string of [[x, y], ...]) if set, else a polygon of `robot_radius` if
-    set, either padded by footprint_padding; None, the robot's own, if neither is set."""
+    """`footprint` (a string of [[x, y], ...]) if set, else a polygon of `robot_radius` (0.1 m
+    if unset, costmap_2d_ros.cpp:128, 449 at jazzy f4108e5b), either padded by
+    footprint_padding."""
     text = node.text("footprint", "[]")
-    padding = node.number("footprint_padding", 0.01)
+    padding = node.number("footprint_padding", DEFAULT_FOOTPRINT_PADDING)
     if text.strip() not in ("", "[]"):
         return pad_footprint(_polygon(node, text), padding)
-    radius = node.number("robot_radius", 0.0)
-    if "robot_radius" not in node.values:
-        return config.footprint
-    # costmap_2d's makeFootprintFromRadius: 16 points on the circle; Costmap2DROS pads every
-    # footprint it is given, a radius's too (setRobotFootprint, costmap_2d_ros.cpp:487-490 at
-    # jazzy f4108e5b).
-    circle = tuple(
-        (radius * math.cos(2 * math.pi * i / 16), radius * math.sin(2 * math.pi * i / 16))
-        for i in range(16)
-    )
-    return pad_footprint(circle, padding)
+    return radius_footprint(node.number("robot_radius", DEFAULT_ROBOT_RADIUS), padding)
 
 
 def _polygon(node: NodeParameters, text: str) -> tuple[tuple[float, float], ...]:
@@ -141,11 +158,7 @@ def _number(text: str, at: int, depth: int, row: list[float]) -> int:
 
 
 def _layers(node: NodeParameters, config: CostmapConfig) -> CostmapConfig:
-    plugins = node.names("plugins", ())
-    kinds = {
-        name: node.plugin(name, (*OBSTACLE_LAYERS, INFLATION_LAYER, STATIC_LAYER), "costmap layer")
-        for name in plugins
-    }
+    kinds = layer_kinds(node)
     obstacle = [name for name, kind in kinds.items() if kind in OBSTACLE_LAYERS]
     inflation = [name for name, kind in kinds.items() if kind == INFLATION_LAYER]
     if len(obstacle) > 1 or len(inflation) > 1:
@@ -154,15 +167,13 @@ def _layers(node: NodeParameters, config: CostmapConfig) -> CostmapConfig:
         )
     if inflation and node.flag(f"{inflation[0]}.enabled", True):
         config = _inflation(node, inflation[0], config)
-    elif plugins:
+    else:
         config = _without_inflation(config)
     if obstacle and node.flag(f"{obstacle[0]}.enabled", True):
         return _obstacle_layer(node, obstacle[0], kinds[obstacle[0]], config)
-    if plugins:
-        # Nothing marks or clears: the costmap is blind to the scan.
-        source = dataclasses.replace(config.source, marking=False, clearing=False)
-        return dataclasses.replace(config, source=source)
-    return config
+    # Nothing marks or clears: the costmap is blind to the scan.
+    source = dataclasses.replace(config.source, marking=False, clearing=False)
+    return dataclasses.replace(config, source=source)
 
 
 def _inflation(node: NodeParameters, layer: str, config: CostmapConfig) -> CostmapConfig:
@@ -184,20 +195,26 @@ def _obstacle_layer(
     node: NodeParameters, layer: str, kind: str, config: CostmapConfig
 ) -> CostmapConfig:
     """The layer's one laser source: its ranges, heights and inf_is_valid."""
-    sources = node.names(f"{layer}.observation_sources", ())
+    sources = node.names(f"{layer}.observation_sources", ())  # "" by default: none
     if len(sources) != 1:
+        how = (
+            "names no source: the layer would never see the scan"
+            if not sources
+            else (f"names {len(sources)} sources; the imitation feeds its layer one laser scan")
+        )
         raise node.problem(
             f"{layer}.observation_sources",
-            f"names {len(sources)} sources; the imitation feeds its layer one laser scan",
+            how,
             "name one LaserScan source, e.g. observation_sources: scan",
         )
     prefix = f"{layer}.{sources[0]}."
-    if node.text(f"{prefix}data_type", "PointCloud2") != "LaserScan":
+    if node.text(f"{prefix}data_type", "LaserScan") != "LaserScan":
         raise node.problem(
             f"{prefix}data_type", "must be LaserScan: the source is the scanner", "write LaserScan"
         )
     node.text(f"{prefix}topic", "")
-    source = node.fields(prefix, config.source)
+    layer_heights = ("layer_min_obstacle_height", "layer_max_obstacle_height")
+    source = node.fields(prefix, config.source, exclude=layer_heights)
     top = node.number(f"{layer}.max_obstacle_height", 2.0)
     if kind == OBSTACLE_LAYERS[1]:
         column = node.number(f"{layer}.z_voxels", 10, whole=True)

@@ -7,7 +7,8 @@ coreScoringAlgorithm, scoreTrajectory, transformGlobalPlan), dwb_plugins/src/
 standard_traj_generator.cpp, xy_theta_iterator.cpp, kinematic_parameters.cpp and
 include/dwb_plugins/one_d_velocity_iterator.hpp; the critics as `dwb_critics.py` lists; the
 defaults are nav2_bringup/params/nav2_params.yaml's FollowPath, and the sources' own where the
-file sets none. Our own numpy code, in float64 as DWB's doubles.
+file sets none; a team's params file reads over DWB's own (`CODE_DEFAULTS`). Our own numpy
+code, in float64 as DWB's doubles.
 
 One cycle: the plan is cut to the part near the robot (transformGlobalPlan); the critics
 prepare; every velocity the XYThetaIterator yields is rolled out for sim_time; each critic
@@ -267,6 +268,31 @@ def local_plan(path: F64, pose: Pose, grid: CostGrid, s: DwbSettings) -> F64:
     end = begin + int(far[0]) if len(far) else len(path)
     kept: F64 = path[begin:end]
     return kept
+
+
+# DWB's own defaults, for a params file that leaves a parameter out: the kinematic limits 0
+# (kinematic_parameters.cpp:74-99), linear_granularity 0.5 (standard_traj_generator.cpp:68-70),
+# every critic's scale 1.0 (trajectory_critic.hpp:105-110) and the align critics'
+# forward_point_distance 0.325 (path_align.cpp:55-57, goal_align.cpp:55-57), at humble 3c3db59d
+# as at jazzy f4108e5b; the rest as DwbSettings holds them (the code's own figures).
+CODE_DEFAULTS = DwbSettings(
+    max_vel_x=0.0,
+    max_vel_theta=0.0,
+    max_speed_xy=0.0,
+    acc_lim_x=0.0,
+    acc_lim_theta=0.0,
+    decel_lim_x=0.0,
+    decel_lim_theta=0.0,
+    linear_granularity=0.5,
+    rotate_to_goal_scale=1.0,
+    base_obstacle_scale=1.0,
+    goal_align_scale=1.0,
+    path_align_scale=1.0,
+    path_dist_scale=1.0,
+    goal_dist_scale=1.0,
+    path_align_forward_point_distance=0.325,
+    goal_align_forward_point_distance=0.325,
+)
 
 
 class DwbController:

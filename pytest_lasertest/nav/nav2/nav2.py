@@ -1,6 +1,6 @@
 """Nav2 as nav2_bringup runs it (nav2_params.yaml and the default behaviour tree,
 navigate_to_pose_w_replanning_and_recovery.xml, at jazzy f4108e5b), with the parameters of a
-params file (`params.py`; Jazzy's values where it sets none).
+params file (`params.py`; Nav2's code defaults where it sets none).
 
 Scan by scan, and between scans at its own clocks' rate (`control_frequency`), it does what
 Nav2's servers do on their clocks:

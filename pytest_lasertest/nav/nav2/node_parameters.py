@@ -135,9 +135,17 @@ class NodeParameters:
             )
         return tuple(float(v) for v in value)  # type: ignore[arg-type]
 
-    def plugin(self, name: str, imitated: tuple[str, ...], what: str) -> str:
-        """`<name>.plugin`, which must be one we imitate (`pkg::Class` or `pkg/Class`)."""
-        kind = self.text(f"{name}.plugin", imitated[0]).replace("/", "::")
+    def plugin(self, name: str, imitated: tuple[str, ...], what: str, default: str | None) -> str:
+        """`<name>.plugin` (`pkg::Class` or `pkg/Class`), which must be one we imitate; `default`
+        where Nav2 declares one (for a plugin list left as its default), else the file must set
+        it (nav2_util::get_plugin_type_param, node_utils.hpp:251-269 at jazzy f4108e5b)."""
+        kind = self.text(f"{name}.plugin", default or "").replace("/", "::")
+        if not kind:
+            raise self.problem(
+                f"{name}.plugin",
+                "is not set: Nav2 refuses to configure without it (\"No 'plugin' param\")",
+                f"write {name}.plugin: {' or '.join(imitated)}",
+            )
         if kind not in imitated:
             raise self.problem(
                 f"{name}.plugin",
@@ -146,10 +154,19 @@ class NodeParameters:
             )
         return kind
 
-    def fields(self, prefix: str, values: Any, renamed: dict[str, str] | None = None) -> Any:
+    def fields(
+        self,
+        prefix: str,
+        values: Any,
+        renamed: dict[str, str] | None = None,
+        exclude: tuple[str, ...] = (),
+    ) -> Any:
         """A dataclass with each of its fields the node sets under `prefix` read at its type;
-        `renamed` maps the file's names to the fields'."""
-        names = {field.name: field.name for field in dataclasses.fields(values)}
+        `renamed` maps the file's names to the fields' (a field renamed is read by those names
+        alone); the fields in `exclude` are not the node's parameters."""
+        names = {f.name: f.name for f in dataclasses.fields(values) if f.name not in exclude}
+        for attribute in (renamed or {}).values():
+            names.pop(attribute, None)
         names.update(renamed or {})
         changes: dict[str, float | bool] = {}
         for name, attribute in names.items():

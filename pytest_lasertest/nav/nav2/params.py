@@ -22,16 +22,17 @@ from dataclasses import dataclass
 
 from pytest_lasertest.model.robot import ParameterValue
 from pytest_lasertest.nav.move_base.static_layer import StaticLayerSettings
-from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings
 from pytest_lasertest.nav.nav2.costmap_params import has_static_layer, read_costmap
+from pytest_lasertest.nav.nav2.dwb import CODE_DEFAULTS, DwbSettings
 from pytest_lasertest.nav.nav2.dwb import CRITICS as DWB_CRITICS
-from pytest_lasertest.nav.nav2.dwb import DwbSettings
 from pytest_lasertest.nav.nav2.mppi import SAME_PERIOD
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
 from pytest_lasertest.nav.nav2.settings import (
     CRITICS,
     MppiCritic,
     Nav2Settings,
+    code_default_critics,
+    code_defaults,
 )
 
 Parameter = tuple[str, str, ParameterValue]
@@ -59,15 +60,19 @@ def configured(parameters: tuple[Parameter, ...], release: str) -> Nav2Config:
 
 
 def configure(parameters: Iterable[Parameter], release: str = "jazzy") -> Nav2Config:
-    """Jazzy's defaults with `parameters` set; raises `ParameterProblem`."""
+    """The settings of a params file's `parameters` for `release`; raises `ParameterProblem`.
+    No parameters, no params file: nav2_bringup's nav2_params.yaml. A file's nodes are read
+    over Nav2's code defaults (`code_defaults`), a node it leaves out too, as a launch given
+    that file alone would run it."""
     nodes: dict[str, dict[str, ParameterValue]] = {}
     for node, name, value in parameters:
         nodes.setdefault(node, {})[name] = value
+    if not nodes:
+        return Nav2Config(Nav2Settings(release=release), ())
     used: set[tuple[str, str]] = set()
-    settings = Nav2Settings(release=release)
+    settings = code_defaults(release)
     for node, read in READERS.items():
-        if node in nodes:
-            settings = read(NodeParameters(node, nodes[node], used), settings)
+        settings = read(NodeParameters(node, nodes.get(node, {}), used), settings)
     return Nav2Config(settings, _unmodelled(nodes, used))
 
 
@@ -86,23 +91,24 @@ def _unmodelled(
 
 def _controller_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
     """controller_server: its rate, the FollowPath controller (MPPI or DWB), the progress and goal
-    checkers."""
-    if "FollowPath" not in node.names("controller_plugins", ("FollowPath",)):
+    checkers. A plugin list left as its default names its default plugin: FollowPath is DWB
+    (controller_server.cpp:40-58, 93-118 at jazzy f4108e5b)."""
+    listed = node.names("controller_plugins", ("FollowPath",))
+    if "FollowPath" not in listed:
         raise node.problem(
             "controller_plugins",
             "does not name FollowPath, the controller the default behaviour tree asks for",
             'write controller_plugins: ["FollowPath"] and FollowPath\'s parameters',
         )
     frequency = node.number("controller_frequency", settings.controller_frequency)
-    if node.plugin("FollowPath", (MPPI, DWB), "controller") == DWB:
+    default = DWB if listed == ("FollowPath",) else None
+    if node.plugin("FollowPath", (MPPI, DWB), "controller", default) == DWB:
         settings = _dwb(node, settings)
     else:
         settings = _mppi(node, settings)
         _check_period(node, frequency, settings.mppi.model_dt)
-    progress = node.names("progress_checker_plugins", ("progress_checker",))[0]
-    node.plugin(progress, ("nav2_controller::SimpleProgressChecker",), "progress checker")
-    goal = node.names("goal_checker_plugins", ("goal_checker",))[0]
-    node.plugin(goal, ("nav2_controller::SimpleGoalChecker",), "goal checker")
+    progress = _checker(node, settings.release, "progress_checker", PROGRESS_CHECKER)
+    goal = _checker(node, settings.release, "goal_checker", GOAL_CHECKER)
     return dataclasses.replace(
         settings,
         controller_frequency=frequency,
@@ -114,6 +120,22 @@ def _controller_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
         ),
         xy_goal_tolerance=node.number(f"{goal}.xy_goal_tolerance", settings.xy_goal_tolerance),
     )
+
+
+PROGRESS_CHECKER = "nav2_controller::SimpleProgressChecker"
+GOAL_CHECKER = "nav2_controller::SimpleGoalChecker"
+
+
+def _checker(node: NodeParameters, release: str, name: str, kind: str) -> str:
+    """The progress or goal checker's name: the first of `<name>_plugins` (`name` by default),
+    or Humble's one progress_checker_plugin (controller_server.cpp:53, 84-89 at humble
+    3c3db59d); its plugin must be `kind`, the default only for the default name."""
+    if release == "humble" and name == "progress_checker":
+        listed: tuple[str, ...] = (node.text("progress_checker_plugin", name),)
+    else:
+        listed = node.names(f"{name}_plugins", (name,))
+    node.plugin(listed[0], (kind,), name.replace("_", " "), kind if listed == (name,) else None)
+    return listed[0]
 
 
 def _mppi(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
@@ -129,7 +151,7 @@ def _mppi(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
     return dataclasses.replace(
         settings,
         mppi=mppi,
-        critics=_critics(node, settings.critics),
+        critics=_critics(node, settings.release),
         prune_distance=node.number("FollowPath.prune_distance", settings.prune_distance),
         max_robot_pose_search_dist=_search_distance(node, settings.max_robot_pose_search_dist),
     )
@@ -155,7 +177,15 @@ def _check_period(node: NodeParameters, frequency: float, model_dt: float) -> No
 
 def _dwb(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
     """DWB as FollowPath: its own parameters, its critics and theirs (`Critic.scale`,
-    `PathAlign.forward_point_distance`, `RotateToGoal.slowing_factor`, ...)."""
+    `PathAlign.forward_point_distance`, `RotateToGoal.slowing_factor`, ...), over the code's
+    defaults (`dwb.CODE_DEFAULTS`)."""
+    if "FollowPath.critics" not in node.values:
+        # Declared without a default (dwb_local_planner.cpp:81-83, 204-206 at jazzy f4108e5b).
+        raise node.problem(
+            "FollowPath.critics",
+            'is not set: DWB refuses to configure ("No critics defined for FollowPath")',
+            f"list the critics, e.g. critics: [{', '.join(DWB_CRITICS)}]",
+        )
     critics = node.names("FollowPath.critics", DWB_CRITICS)
     unknown = [name for name in critics if name not in DWB_CRITICS]
     if unknown:
@@ -170,16 +200,15 @@ def _dwb(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
             "only a negative lookahead_time (the trajectory's last pose) is imitated",
             "write -1.0, Nav2's default",
         )
-    dwb = dataclasses.replace(node.fields("FollowPath.", DwbSettings()), critics=critics)
     renamed = {
         f"{critic}.{leaf}": field.name
-        for field in dataclasses.fields(dwb)
+        for field in dataclasses.fields(DwbSettings)
         for critic in DWB_CRITICS
         for leaf in _critic_leaves(field.name, critic)
     }
-    dwb = node.fields("FollowPath.", dwb, renamed)
-    prune = dwb.prune_distance
-    return dataclasses.replace(settings, dwb=dwb, prune_distance=prune)
+    dwb = node.fields("FollowPath.", CODE_DEFAULTS, renamed, exclude=("critics",))
+    dwb = dataclasses.replace(dwb, critics=critics)
+    return dataclasses.replace(settings, dwb=dwb, prune_distance=dwb.prune_distance)
 
 
 def _critic_leaves(field: str, critic: str) -> list[str]:
@@ -195,13 +224,13 @@ def _critic_leaves(field: str, critic: str) -> list[str]:
     return [field] if field in owned.get(critic, ()) else []
 
 
-def _critics(node: NodeParameters, defaults: tuple[MppiCritic, ...]) -> tuple[MppiCritic, ...]:
-    """MPPI's critics in the order FollowPath.critics lists them, each with its parameters;
+def _critics(node: NodeParameters, release: str) -> tuple[MppiCritic, ...]:
+    """MPPI's critics in the order FollowPath.critics lists them (none if it is not set,
+    critic_manager.cpp:39 at jazzy f4108e5b), each with its parameters over its own defaults;
     one with enabled false is left out."""
-    by_name = {type(critic).__name__: critic for critic in defaults}
-    listed = node.names("FollowPath.critics", tuple(by_name))
+    by_name = code_default_critics(release)
     critics = []
-    for name in listed:
+    for name in node.names("FollowPath.critics", ()):
         if name in NOT_IMITATED_CRITICS:
             continue
         if name not in CRITICS:
@@ -210,19 +239,18 @@ def _critics(node: NodeParameters, defaults: tuple[MppiCritic, ...]) -> tuple[Mp
                 f"{name} is a critic the MPPI imitation does not have",
                 f"leave it out, or use those it has: {', '.join(CRITICS)}",
             )
-        critic = by_name[name]
         renamed = {"cost_weight": "weight", "cost_power": "power"}
         if node.flag(f"FollowPath.{name}.enabled", True):
-            critics.append(node.fields(f"FollowPath.{name}.", critic, renamed))
+            critics.append(node.fields(f"FollowPath.{name}.", by_name[name], renamed))
     return tuple(critics)
 
 
 def _local_costmap(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
-    return dataclasses.replace(settings, local=read_costmap(node, settings.local))
+    return dataclasses.replace(settings, local=read_costmap(node, settings.local, rolls=True))
 
 
 def _global_costmap(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
-    config = read_costmap(node, settings.global_)
+    config = read_costmap(node, settings.global_, rolls=False)
     if has_static_layer(node):
         # A world without a map is open ground: a static layer knows its map all free.
         # Without one (Nav2's nav2_no_map_params.yaml) unknown space stays unknown until
@@ -244,13 +272,14 @@ def _static_layer(node: NodeParameters, track_unknown_space: bool) -> StaticLaye
 
 
 def _planner_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
-    if "GridBased" not in node.names("planner_plugins", ("GridBased",)):
+    if "GridBased" not in node.names("planner_plugins", ("GridBased",)):  # planner_server.cpp:46
         raise node.problem(
             "planner_plugins",
             "does not name GridBased, the planner the default behaviour tree asks for",
             'write planner_plugins: ["GridBased"] with NavFn',
         )
-    node.plugin("GridBased", (NAVFN,), "planner")
+    listed = node.names("planner_plugins", ("GridBased",))
+    node.plugin("GridBased", (NAVFN,), "planner", NAVFN if listed == ("GridBased",) else None)
     if node.flag("GridBased.use_astar", False):
         raise node.problem(
             "GridBased.use_astar", "A* is not imitated: NavFn here is Dijkstra", "write false"
@@ -301,37 +330,69 @@ def _check_signs(node: NodeParameters, name: str, values: tuple[float, ...]) -> 
 
 
 def _collision_monitor(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
-    """The collision monitor: one FootprintApproach polygon on one scan source, or none."""
-    polygons = node.names("polygons", ("FootprintApproach",))
+    """The collision monitor: one FootprintApproach polygon on one scan source, or none. A file
+    without the node runs none (Humble's bringup launches none; Jazzy's would fail to start
+    it). polygons, observation_sources, a polygon's type and action_type have no default
+    (collision_monitor_node.cpp:303-311, 356-359, polygon.cpp:332-335 at jazzy f4108e5b;
+    Humble's polygons is an empty list, collision_monitor_node.cpp:245-246 at 3c3db59d)."""
+    if not node.values:
+        return dataclasses.replace(settings, collision_monitor=None)
+    if settings.release == "humble" and "polygons" not in node.values:
+        return dataclasses.replace(settings, collision_monitor=None)
+    polygons = _required_names(node, "polygons", "FootprintApproach")
     enabled = [name for name in polygons if node.flag(f"{name}.enabled", True)]
     if not enabled:
         return dataclasses.replace(settings, collision_monitor=None)
-    if len(enabled) > 1 or node.text(f"{enabled[0]}.action_type", "approach") != "approach":
+    polygon = enabled[0]
+    _check_type(node, f"{polygon}.type", "polygon", POLYGON_TYPES, required=True)
+    action = f"{polygon}.action_type"
+    if len(enabled) > 1 or _required_text(node, action, "approach") != "approach":
         raise node.problem(
-            f"{enabled[0]}.action_type",
+            action,
             "the imitation has one polygon, of action_type approach on the footprint",
             "keep one approach polygon, as nav2_bringup's FootprintApproach",
         )
-    polygon = enabled[0]
-    monitor = node.fields(f"{polygon}.", CollisionMonitorSettings())
+    assert settings.collision_monitor is not None  # the code defaults hold one
+    monitor = node.fields(f"{polygon}.", settings.collision_monitor)
     if f"{polygon}.max_points" in node.values:
         # Deprecated, and still read over min_points (Polygon::getCommonParameters,
         # polygon.cpp:359-369 at jazzy f4108e5b).
         most = int(node.number(f"{polygon}.max_points", 0, whole=True))
         monitor = dataclasses.replace(monitor, min_points=most + 1)
-    _check_type(node, f"{polygon}.type", "polygon", POLYGON_TYPES)
     node.text(f"{polygon}.footprint_topic", "")
-    sources = node.names("observation_sources", ("scan",))
+    sources = _required_names(node, "observation_sources", "scan")
     if len(sources) != 1:
         raise node.problem(
             "observation_sources", "the imitation's monitor reads one scan", "name one source"
         )
     if not node.flag(f"{sources[0]}.enabled", True):
         return dataclasses.replace(settings, collision_monitor=None)  # it reads nothing
-    monitor = node.fields(f"{sources[0]}.", monitor)
-    _check_type(node, f"{sources[0]}.type", "scan", SOURCE_TYPES)
+    _check_type(node, f"{sources[0]}.type", "scan", SOURCE_TYPES, required=False)
     node.text(f"{sources[0]}.topic", "")
     return dataclasses.replace(settings, collision_monitor=monitor)
+
+
+def _required_names(node: NodeParameters, name: str, example: str) -> tuple[str, ...]:
+    """A list the collision monitor declares without a default."""
+    if name not in node.values:
+        raise node.problem(
+            name,
+            "is not set: Nav2's collision monitor refuses to configure without it",
+            f'write {name}: ["{example}"], or leave the collision_monitor node out of the '
+            "file to run none",
+        )
+    return node.names(name, ())
+
+
+def _required_text(node: NodeParameters, name: str, example: str) -> str:
+    """A string the collision monitor declares without a default."""
+    if name not in node.values:
+        raise node.problem(
+            name,
+            "is not set: Nav2's collision monitor refuses to configure without it",
+            f"write {name}: {example}",
+        )
+    return node.text(name, example)
 
 
 # The types the collision monitor knows (CollisionMonitor::configurePolygons and
@@ -340,10 +401,12 @@ POLYGON_TYPES = ("polygon", "circle", "velocity_polygon")
 SOURCE_TYPES = ("scan", "pointcloud", "range", "polygon")
 
 
-def _check_type(node: NodeParameters, name: str, imitated: str, known: tuple[str, ...]) -> None:
+def _check_type(
+    node: NodeParameters, name: str, imitated: str, known: tuple[str, ...], required: bool
+) -> None:
     """A polygon's or source's type: one Nav2 knows (else it refuses to configure), and the
     one the imitation has."""
-    kind = node.text(name, imitated)
+    kind = _required_text(node, name, imitated) if required else node.text(name, imitated)
     if kind not in known:
         why = f"{kind!r} is not a type Nav2's collision monitor knows ({', '.join(known)})"
     elif kind != imitated:

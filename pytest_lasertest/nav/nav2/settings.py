@@ -1,16 +1,20 @@
-"""Nav2's parameters as the imitation holds them: Jazzy's nav2_params.yaml by default
-(nav2_bringup/params/nav2_params.yaml at jazzy f4108e5b), and the release whose obstacle layer
-marks the scan (`RELEASES`).
+"""Nav2's parameters as the imitation holds them, and the release whose obstacle layer marks
+the scan (`RELEASES`).
 
-A team's own params file sets them through `params.py`; the robot's footprint stands where the
-file sets neither `footprint` nor `robot_radius`.
+Without a params file they are Jazzy's nav2_params.yaml (nav2_bringup/params/nav2_params.yaml
+at jazzy f4108e5b), and the robot's own footprint. A team's params file sets them through
+`params.py` over `code_defaults`: what it leaves out takes the value Nav2's code declares for
+the release, as a launch given that file alone would run.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import re
 from dataclasses import dataclass, field
 
+from pytest_lasertest.model.robot import pad_footprint
 from pytest_lasertest.nav.move_base.costmap import CostmapSettings
 from pytest_lasertest.nav.move_base.navfn import NavfnSettings
 from pytest_lasertest.nav.move_base.static_layer import StaticLayerSettings
@@ -183,3 +187,73 @@ def describe(settings: Nav2Settings) -> str:
         else (f"collision monitor {monitor.time_before_collision:g} s")
     )
     return f"Nav2 {settings.release}: NavFn, {follow}, {guard}"
+
+
+# Costmap2DROS's robot_radius and footprint_padding where a file sets neither footprint nor
+# robot_radius (costmap_2d_ros.cpp:114, :128 at jazzy f4108e5b; the same at humble 3c3db59d).
+DEFAULT_ROBOT_RADIUS = 0.1  # m
+DEFAULT_FOOTPRINT_PADDING = 0.01  # m
+
+
+def radius_footprint(radius: float, padding: float) -> tuple[tuple[float, float], ...]:
+    """makeFootprintFromRadius: 16 points on the circle, padded as Costmap2DROS pads every
+    footprint it is given (setRobotFootprint, costmap_2d_ros.cpp:487-490 at jazzy f4108e5b)."""
+    circle = tuple(
+        (radius * math.cos(2 * math.pi * i / 16), radius * math.sin(2 * math.pi * i / 16))
+        for i in range(16)
+    )
+    return pad_footprint(circle, padding)
+
+
+def code_defaults(release: str) -> Nav2Settings:
+    """The settings of a params file that sets nothing: each parameter as Nav2's code declares
+    it (read at jazzy f4108e5b and humble 3c3db59d; kilted and the Jazzy release numbers as
+    Jazzy). Where the code gives no default (DWB's critics, the collision monitor's polygons
+    and sources) the params reader asks the file for it."""
+    return Nav2Settings(
+        release=release,
+        mppi=MppiSettings(batch_size=1000),  # optimizer.cpp:72
+        critics=(),  # critic_manager.cpp:39: no critic unless `critics` lists it
+        local=dataclasses.replace(_code_default_costmap(5.0), static_layer=None),
+        # Not rolling by default (costmap_2d_ros.cpp:129): the global costmap spans the map,
+        # here the window over the route (see `Nav2._global_costmap`).
+        global_=_code_default_costmap(_global().costmap.size),
+        prune_distance=1.5,  # MPPI's, path_handler.cpp:38
+        collision_monitor=CollisionMonitorSettings(time_before_collision=2.0, min_points=4),
+        smoother=SmootherSettings(max_velocity=(0.5, 2.5), min_velocity=(-0.5, -2.5)),
+        # The rest as nav2_params.yaml sets them, the same figures as the code's:
+        # controller_server.cpp:52, simple_goal_checker.cpp:73-75, simple_progress_checker.cpp
+        # :40-43, navfn_planner.cpp:84-88, behavior_server.cpp:50 and spin.cpp:53-71.
+    )
+
+
+def code_default_critics(release: str) -> dict[str, MppiCritic]:
+    """Each MPPI critic as its own initialize() declares its parameters (mppi/src/critics at
+    jazzy f4108e5b; PathAngleCritic's weight and angle at humble 3c3db59d)."""
+    humble = release == "humble"
+    return {
+        "ConstraintCritic": ConstraintCritic(MppiSettings()),
+        "CostCritic": CostCritic(near_goal_distance=0.5),  # cost_critic.cpp:32
+        "GoalCritic": GoalCritic(),
+        "PathAlignCritic": PathAlignCritic(weight=10.0, max_path_occupancy_ratio=0.07),  # :27, :29
+        "PathFollowCritic": PathFollowCritic(offset_from_furthest=6),  # path_follow_critic.cpp:30
+        # path_angle_critic.cpp:39, :43-45 (humble :37, :41-43)
+        "PathAngleCritic": PathAngleCritic(
+            weight=2.0 if humble else 2.2, max_angle_to_furthest=1.2 if humble else 0.785398
+        ),
+        "PreferForwardCritic": PreferForwardCritic(),
+    }
+
+
+def _code_default_costmap(size: float) -> CostmapConfig:
+    """Costmap2DROS's own defaults (costmap_2d_ros.cpp:114-136 at jazzy f4108e5b): a window of
+    `size` m (the code's 5 for a rolling one) of 0.1 m cells at 5 Hz, the default layers'
+    inflation (inflation_layer.cpp:93-94), a source that clears nothing and keeps only points at
+    most 0.0 m high (obstacle_layer.cpp:149-157), the 0.1 m circle, and a static layer (the
+    default plugins list it first; only the global costmap's is read, see `Nav2.receive_map`)."""
+    return CostmapConfig(
+        CostmapSettings(size=size, resolution=0.1, update_frequency=5.0),
+        source=ObservationSource(clearing=False, max_obstacle_height=0.0),
+        footprint=radius_footprint(DEFAULT_ROBOT_RADIUS, DEFAULT_FOOTPRINT_PADDING),
+        static_layer=StaticLayerSettings.nav2(track_unknown_space=False),
+    )

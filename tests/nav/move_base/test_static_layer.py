@@ -168,8 +168,8 @@ def test_the_layers_combine_as_update_with_max_after_a_true_overwrite() -> None:
         (StaticLayerSettings(trinary_costmap=False), {50: 127, 1: 2, 99: 251, 100: LETHAL}),
         (StaticLayerSettings(lethal_cost_threshold=65), {64: FREE, 65: LETHAL}),
         (StaticLayerSettings(unknown_cost_value=50), {50: UNKNOWN, -1: LETHAL}),
-        # Nav2's: 99 is inscribed.
-        (StaticLayerSettings.nav2(True), {99: INSCRIBED, 98: FREE, 100: LETHAL, -1: UNKNOWN}),
+        # Nav2's releases imitated read 99 as ROS 1 does (inscribed_obstacle_cost_value came later).
+        (StaticLayerSettings.nav2(True), {99: FREE, 98: FREE, 100: LETHAL, -1: UNKNOWN}),
     ],
 )
 def test_map_values_become_costs_as_interpret_value_turns_them(

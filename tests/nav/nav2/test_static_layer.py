@@ -21,6 +21,7 @@ from pytest_lasertest.nav.protocol import LaserScan, Odometry
 from pytest_lasertest.pairsfile import load_pairs_file
 from tests.helpers import EXAMPLES
 from tests.helpers.costmap import cost_at
+from tests.helpers.nav2_params import bringup_node, nav2_settings, params_file
 
 PAPER = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
 SCANNER = next(pair for pair in PAPER.pairs if pair.name == "distance").baseline.profile
@@ -98,7 +99,7 @@ def test_a_global_costmap_without_a_static_layer_takes_no_map() -> None:
         ("inflation_layer.plugin", "nav2_costmap_2d::InflationLayer"),
         ("track_unknown_space", True),
     ]
-    settings = configure(("global_costmap", name, value) for name, value in layers).settings
+    settings = nav2_settings({"global_costmap": dict(layers)})
     assert settings.global_.static_layer is None
     nav2 = after_one_scan(ACROSS_MAP, settings)
     assert nav2.global_costmap.static is None
@@ -106,26 +107,27 @@ def test_a_global_costmap_without_a_static_layer_takes_no_map() -> None:
 
 
 def test_the_static_layers_parameters_are_read_from_the_costmap_node() -> None:
-    values = [
-        ("track_unknown_space", True),
-        ("lethal_cost_threshold", 65),
-        ("unknown_cost_value", -1),
-        ("trinary_costmap", False),
-        ("use_maximum", False),
-        ("inscribed_obstacle_cost_value", 90),
-    ]
-    config = configure(("global_costmap", name, value) for name, value in values)
+    values = {
+        "track_unknown_space": True,
+        "lethal_cost_threshold": 65,
+        "unknown_cost_value": -1,
+        "trinary_costmap": False,
+        "use_maximum": False,
+        "inscribed_obstacle_cost_value": 90,  # main's (a3a97043), no release's imitated
+    }
+    layers = bringup_node("global_costmap", drop=("track_unknown_space",))
+    config = configure(params_file({"global_costmap": {**layers, **values}}))
     assert config.settings.global_.static_layer == StaticLayerSettings(
         track_unknown_space=True,
         lethal_cost_threshold=65,
         unknown_cost_value=-1,
         trinary_costmap=False,
         use_maximum=False,
-        inscribed_obstacle_cost_value=90,
     )
     # Without a map the costmap stands for an open field's, as before.
     assert config.settings.global_.costmap.track_unknown_space is False
-    assert config.unmodelled == ()
+    (unread,) = [line for line in config.unmodelled if line.startswith("global_costmap: ")]
+    assert "inscribed_obstacle_cost_value" in unread
 
 
 def test_nav2s_default_global_costmap_has_a_static_layer_that_tracks_unknown_space() -> None:
