@@ -141,6 +141,7 @@ def _located(
     field = f"{problem.node}.{problem.name}"
     in_node = next((n for (name, _), n in where.items() if name == problem.node), None)
     if in_node is None:
-        why = f"{problem.problem} (the file has no {problem.node} node: Nav2 runs it on its defaults)"
+        missing = f"the file has no {problem.node} node: Nav2 runs it on its defaults"
+        why = f"{problem.problem} ({missing})"
         return SpecError(root.location, field, why, problem.fix)
     return SpecError(in_node.location, field, problem.problem, problem.fix)
