@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import yaml
+from yaml.events import AliasEvent
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
 from pytest_lasertest.inputs.errors import Location, SpecError
@@ -23,6 +24,8 @@ YAML_FILE = FileKind(
     "check that this is the file you meant: a pairs, robot, navigation or scanner file",
 )
 MAX_DEPTH = 50  # mappings and lists nested in each other; a pairs file needs about 6
+# Why a kind of file may not hold a YAML alias (*name), and the fix.
+Refusal = tuple[str, str]
 
 
 class YamlMap(dict[str, object]):
@@ -46,14 +49,20 @@ class YamlList(list[object]):
 class _LocatingLoader(yaml.SafeLoader):
     """SafeLoader building YamlMap and YamlList, tracking the field path for error messages."""
 
-    def __init__(self, text: str, path: Path) -> None:
+    def __init__(self, text: str, path: Path, refused_aliases: Refusal | None) -> None:
         super().__init__(text)
         self.path = path
         self.field_path: list[str] = []
         self.depth = 0  # how many nodes deep the composer is
+        self.refused_aliases = refused_aliases
 
     def compose_node(self, parent: Node | None, index: int) -> Node | None:
-        """Compose one node, refusing nesting deeper than MAX_DEPTH where it begins."""
+        """Compose one node, refusing nesting deeper than MAX_DEPTH where it begins, and an
+        alias where the file's reader refuses them."""
+        if self.refused_aliases is not None and self.check_event(AliasEvent):
+            line = self.peek_event().start_mark.line + 1  # type: ignore[no-untyped-call]
+            problem, fix = self.refused_aliases
+            raise SpecError(Location(self.path, line), "", problem, fix)
         self.depth += 1
         try:
             if self.depth > MAX_DEPTH:
@@ -173,8 +182,9 @@ _LocatingLoader.add_constructor("tag:yaml.org,2002:int", _construct_int)
 _LocatingLoader.add_constructor("tag:yaml.org,2002:float", _construct_float)
 
 
-def load_yaml(path: Path) -> object:
-    """Parse one YAML file into YamlMap, YamlList and scalars; None when it holds nothing."""
+def load_yaml(path: Path, refused_aliases: Refusal | None = None) -> object:
+    """Parse one YAML file into YamlMap, YamlList and scalars; None when it holds nothing.
+    With `refused_aliases`, an alias is an error at its line."""
     size = _size(path)
     if size > MAX_BYTES:
         raise SpecError(
@@ -185,7 +195,7 @@ def load_yaml(path: Path) -> object:
             "check that this is the file you meant: a pairs, robot, navigation or scanner file",
         )
     text = read_text(path)
-    loader = _LocatingLoader(text, path)
+    loader = _LocatingLoader(text, path, refused_aliases)
     try:
         return loader.get_single_data()
     except yaml.MarkedYAMLError as error:

@@ -16,13 +16,22 @@ from pytest_lasertest.inputs.node import SpecNode, describe, read_root
 from pytest_lasertest.inputs.yamlfile import YamlList, YamlMap
 from pytest_lasertest.model.robot import ParameterValue, Robot
 from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
-from pytest_lasertest.nav.nav2.params import Parameter, configured
+from pytest_lasertest.nav.nav2.params import WILDCARD, Parameter, configured
 from pytest_lasertest.nav.nav2.settings import RELEASES, marking_of
 
 PARAMETERS = "ros__parameters"
 RELEASE_FIX = (
     f"write one of {', '.join(RELEASES)}, or a Jazzy release number from 1.3.0 to 1.3.13 "
     "(1.3.11 marks by cells without the pre-filter 1.3.12 added)"
+)
+
+
+# ROS 2's parameter parser refuses a YAML alias (parse_file_events: "Will not support aliasing",
+# rcl_yaml_param_parser/src/parse.c at ros2/rcl bef8bd17): Nav2 would not start with the file.
+ALIASES = (
+    'a YAML alias (*name): ROS 2\'s parameter parser refuses one ("Will not support aliasing"), '
+    "so Nav2 would not start with this file",
+    "write the value out in full where the alias stands",
 )
 
 
@@ -66,7 +75,9 @@ def load_nav2_file(node: SpecNode, release: str) -> tuple[Parameter, ...]:
             "give the path of a Nav2 params YAML file (as nav2_bringup's nav2_params.yaml) "
             "relative to this file",
         )
-    root = read_root(path, what="Nav2 params file", needs="nodes with ros__parameters")
+    root = read_root(
+        path, what="Nav2 params file", needs="nodes with ros__parameters", refused_aliases=ALIASES
+    )
     where: dict[tuple[str, str], SpecNode] = {}
     for name, node_parameters in _nodes(root):
         for key, value in _flattened(node_parameters, "").items():
@@ -80,30 +91,56 @@ def load_nav2_file(node: SpecNode, release: str) -> tuple[Parameter, ...]:
 
 
 def _nodes(root: SpecNode) -> list[tuple[str, SpecNode]]:
-    """Each node's `ros__parameters`, by the node's name, its namespace dropped."""
+    """Each node's `ros__parameters`, by the node's name, its namespace dropped, as rcl's
+    parser joins the keys above them (`robot1: {controller_server: ...}`, or
+    `/robot1/controller_server:`; rcl_yaml_param_parser/src/parse.c parse_key at ros2/rcl
+    bef8bd17); "/**" and a node named "*" stand for every node (`WILDCARD`). The gate drives
+    one robot: a node set under two namespaces is an error."""
+    found = _nodes_under(root, ())
+    seen: dict[str, str] = {}
+    for name, namespace, node in found:
+        if name != WILDCARD and seen.setdefault(name, namespace) != namespace:
+            raise node.error(
+                f"{name} is set under two namespaces ({seen[name]} and {namespace}): the gate "
+                "drives one robot",
+                "keep the nodes of the robot the pairs file drives, in one namespace",
+            )
+    return [(name, node) for name, _, node in found]
+
+
+def _nodes_under(node: SpecNode, parts: tuple[str, ...]) -> list[tuple[str, str, SpecNode]]:
+    """(node name, namespace, its ros__parameters) for each node under `node`."""
     found = []
-    for key, child in root.entries(what="nodes").items():
+    for key, child in node.entries(what="nodes").items():
         entries = child.entries(what=f"{key}'s parameters or nodes")
+        path = (*parts, *(part for part in key.split("/") if part))
         if PARAMETERS in entries:
-            found.append((key, entries[PARAMETERS]))
-            continue
-        # A namespace: each of its entries a node.
-        nested = {name: _node_parameters(inner) for name, inner in entries.items()}
-        if not all(nested.values()):
+            found.append((_node_name(path), "/" + "/".join(path[:-1]), entries[PARAMETERS]))
+        elif _holds_nodes(child.value):
+            found += _nodes_under(child, path)  # a namespace: each entry a node, or more
+        else:
             raise child.missing(
                 PARAMETERS,
                 f"write each node's parameters under it: `{key}:` then, indented, "
                 f"`{PARAMETERS}:` and the parameters below (a namespace holds such nodes)",
             )
-        found += [(name, inner) for name, inner in nested.items() if inner is not None]
     return found
 
 
-def _node_parameters(node: SpecNode) -> SpecNode | None:
-    """A namespaced node's `ros__parameters`, or None if `node` is no such node."""
-    if not isinstance(node.value, YamlMap):
-        return None
-    return node.entries(what="parameters").get(PARAMETERS)
+def _holds_nodes(value: object) -> bool:
+    """Whether a mapping is a namespace: each entry a node or a namespace, some node within."""
+    if not isinstance(value, YamlMap) or not value:
+        return False
+    if PARAMETERS in value:
+        return True
+    return all(_holds_nodes(inner) for inner in value.values())
+
+
+def _node_name(path: tuple[str, ...]) -> str:
+    """The node a key path names: its last part, or every node for "/**" and "*"."""
+    if not path or path[-1] in ("*", "**"):
+        return WILDCARD
+    return path[-1]
 
 
 def _flattened(node: SpecNode, prefix: str) -> dict[str, SpecNode]:
@@ -135,7 +172,7 @@ def _located(
     problem: ParameterProblem, where: dict[tuple[str, str], SpecNode], root: SpecNode
 ) -> SpecError:
     """The problem at its parameter's line, or at its node's when the parameter is not set."""
-    node = where.get((problem.node, problem.name))
+    node = where.get((problem.node, problem.name)) or where.get((WILDCARD, problem.name))
     if node is not None:
         return node.error(problem.problem, problem.fix)
     field = f"{problem.node}.{problem.name}"

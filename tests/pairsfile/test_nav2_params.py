@@ -531,3 +531,69 @@ def test_a_broken_dwb_section_is_an_error_at_its_line(
         load(tmp_path, team=husky.replace(old, new))
     assert raised.value.location.line == line
     assert problem in raised.value.problem
+
+
+def _nested(team: str, namespace: str) -> str:
+    """TEAM with every node under `namespace:`, indented a level."""
+    return f"{namespace}:\n" + "".join(f"  {line}\n" for line in team.splitlines())
+
+
+@pytest.mark.parametrize(
+    "team",
+    [
+        TEAM.replace("controller_server:\n", "/controller_server:\n", 1),
+        TEAM.replace("controller_server:\n", "/robot1/controller_server:\n", 1),
+        _nested(TEAM, "robot1"),
+    ],
+    ids=["fully-qualified", "namespaced-key", "namespace-mapping"],
+)
+def test_fully_qualified_and_namespaced_node_names_are_read_as_ros_2_reads_them(
+    tmp_path: Path, team: str
+) -> None:
+    # rcl joins the keys above ros__parameters into the node's name, a leading / or not
+    # (ros2 param dump writes /controller_server:).
+    robot = load(tmp_path, team=team).robot  # type: ignore[attr-defined]
+    assert configure(robot.nav2, robot.nav2_release).settings.controller_frequency == 40.0
+
+
+def test_a_node_set_under_two_namespaces_is_an_error_at_the_second(tmp_path: Path) -> None:
+    team = TEAM + "/robot2/controller_server:\n  ros__parameters: {controller_frequency: 10.0}\n"
+    team = team.replace("controller_server:\n", "/robot1/controller_server:\n", 1)
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, team=team)
+    assert (
+        raised.value.location.line
+        == team.splitlines().index("  ros__parameters: {controller_frequency: 10.0}") + 1
+    )
+    assert "controller_server is set under two namespaces (/robot1 and /robot2)" in (
+        raised.value.problem
+    )
+
+
+def test_parameters_for_every_node_reach_each_node_the_later_winning(tmp_path: Path) -> None:
+    # rclcpp applies "/**" to every node, and of two entries for one parameter the later.
+    before = "/**:\n  ros__parameters: {controller_frequency: 25.0, use_sim_time: true}\n"
+    robot = load(tmp_path, team=before + TEAM).robot  # type: ignore[attr-defined]
+    config = configure(robot.nav2, robot.nav2_release)
+    assert config.settings.controller_frequency == 40.0
+    assert config.unmodelled[-1] == "/**: use_sim_time"
+    after = "/**:\n  ros__parameters: {controller_frequency: 25.0}\n"
+    robot = load(tmp_path, team=TEAM + after).robot  # type: ignore[attr-defined]
+    assert configure(robot.nav2, robot.nav2_release).settings.controller_frequency == 25.0
+
+
+def test_a_yaml_alias_is_refused_at_its_line_as_ros_2_refuses_it(tmp_path: Path) -> None:
+    # Aliases of aliases would also make a few hundred bytes billions of values.
+    team = TEAM.replace(
+        "    controller_frequency: 40.0\n",
+        "    controller_frequency: &rate 40.0\n    failure_tolerance: *rate\n",
+    )
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, team=team)
+    assert raised.value.location.line == 4
+    assert "ROS 2's parameter parser refuses one" in raised.value.problem
+    bomb = "a: &a [1, 1]\nb: &b [*a, *a]\nc: &c [*b, *b]\n" + "".join(
+        f"{chr(100 + i)}: &{chr(100 + i)} [*{chr(99 + i)}, *{chr(99 + i)}]\n" for i in range(20)
+    )
+    with pytest.raises(SpecError, match="Will not support aliasing"):
+        load(tmp_path, team=bomb)

@@ -64,28 +64,49 @@ def configure(parameters: Iterable[Parameter], release: str = "jazzy") -> Nav2Co
     No parameters, no params file: nav2_bringup's nav2_params.yaml. A file's nodes are read
     over Nav2's code defaults (`code_defaults`), a node it leaves out too, as a launch given
     that file alone would run it."""
-    nodes: dict[str, dict[str, ParameterValue]] = {}
-    for node, name, value in parameters:
-        nodes.setdefault(node, {})[name] = value
-    if not nodes:
+    given = tuple(parameters)
+    if not given:
         return Nav2Config(Nav2Settings(release=release), ())
+    nodes = _by_node(given)
     used: set[tuple[str, str]] = set()
     settings = code_defaults(release)
     for node, read in READERS.items():
         settings = read(NodeParameters(node, nodes.get(node, {}), used), settings)
-    return Nav2Config(settings, _unmodelled(nodes, used))
+    return Nav2Config(settings, _unmodelled(given, nodes, used))
+
+
+# The node a params file's "/**" (or a node named "*") sets: every node.
+WILDCARD = "/**"
+
+
+def _by_node(parameters: tuple[Parameter, ...]) -> dict[str, dict[str, ParameterValue]]:
+    """Each node's parameters, the wildcard's among them, the later in the file winning as
+    rclcpp resolves overrides (resolve_parameter_overrides)."""
+    named = {node for node, _, _ in parameters if node != WILDCARD} | set(READERS)
+    nodes: dict[str, dict[str, ParameterValue]] = {}
+    for node, name, value in parameters:
+        for target in named if node == WILDCARD else (node,):
+            nodes.setdefault(target, {})[name] = value
+    return nodes
 
 
 def _unmodelled(
-    nodes: dict[str, dict[str, ParameterValue]], used: set[tuple[str, str]]
+    parameters: tuple[Parameter, ...],
+    nodes: dict[str, dict[str, ParameterValue]],
+    used: set[tuple[str, str]],
 ) -> tuple[str, ...]:
+    wild = {name for node, name, _ in parameters if node == WILDCARD}
+    own = {(node, name) for node, name, _ in parameters if node != WILDCARD}
     lines = []
     for node, values in nodes.items():
-        left = [name for name in values if (node, name) not in used]
-        if node not in READERS:
+        left = [name for name in values if (node, name) not in used and (node, name) in own]
+        if node not in READERS and left:
             lines.append(f"{node}: every parameter ({len(left)})")
         elif left:
             lines.append(f"{node}: {', '.join(left)}")
+    unread = [name for name in wild if not any((node, name) in used for node in READERS)]
+    if unread:
+        lines.append(f"{WILDCARD}: {', '.join(sorted(unread))}")
     return tuple(lines)
 
 
