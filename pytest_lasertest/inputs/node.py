@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from pytest_lasertest.inputs.errors import Location, SpecError
-from pytest_lasertest.inputs.yamlfile import Refusal, YamlList, YamlMap, load_yaml
+from pytest_lasertest.inputs.yamlfile import YamlList, YamlMap, load_yaml
 
 
 @dataclass(frozen=True)
@@ -284,12 +284,10 @@ def _join(field: str, key: str) -> str:
     return f"{field}.{key}" if field else key
 
 
-def read_root(
-    path: Path, *, what: str, needs: str, refused_aliases: Refusal | None = None
-) -> SpecNode:
+def read_root(path: Path, *, what: str, needs: str, ros_params: bool = False) -> SpecNode:
     """The top-level mapping of a YAML file; an empty file is an error that says what it needs.
-    With `refused_aliases`, a YAML alias is an error at its line."""
-    value = load_yaml(path, refused_aliases)
+    `ros_params`: a ROS 2 params file, read as ROS 2 reads one (`load_yaml`)."""
+    value = load_yaml(path, ros_params)
     if value is None:
         raise SpecError(Location(path, 1), "", f"the {what} is empty", f"it needs {needs}")
     return SpecNode(value, Location(path, getattr(value, "line", 1)), "")

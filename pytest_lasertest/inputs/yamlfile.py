@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import yaml
@@ -24,8 +25,6 @@ YAML_FILE = FileKind(
     "check that this is the file you meant: a pairs, robot, navigation or scanner file",
 )
 MAX_DEPTH = 50  # mappings and lists nested in each other; a pairs file needs about 6
-# Why a kind of file may not hold a YAML alias (*name), and the fix.
-Refusal = tuple[str, str]
 
 
 class YamlMap(dict[str, object]):
@@ -49,20 +48,14 @@ class YamlList(list[object]):
 class _LocatingLoader(yaml.SafeLoader):
     """SafeLoader building YamlMap and YamlList, tracking the field path for error messages."""
 
-    def __init__(self, text: str, path: Path, refused_aliases: Refusal | None) -> None:
+    def __init__(self, text: str, path: Path) -> None:
         super().__init__(text)
         self.path = path
         self.field_path: list[str] = []
         self.depth = 0  # how many nodes deep the composer is
-        self.refused_aliases = refused_aliases
 
     def compose_node(self, parent: Node | None, index: int) -> Node | None:
-        """Compose one node, refusing nesting deeper than MAX_DEPTH where it begins, and an
-        alias where the file's reader refuses them."""
-        if self.refused_aliases is not None and self.check_event(AliasEvent):
-            line = self.peek_event().start_mark.line + 1  # type: ignore[no-untyped-call]
-            problem, fix = self.refused_aliases
-            raise SpecError(Location(self.path, line), "", problem, fix)
+        """Compose one node, refusing nesting deeper than MAX_DEPTH where it begins."""
         self.depth += 1
         try:
             if self.depth > MAX_DEPTH:
@@ -182,9 +175,34 @@ _LocatingLoader.add_constructor("tag:yaml.org,2002:int", _construct_int)
 _LocatingLoader.add_constructor("tag:yaml.org,2002:float", _construct_float)
 
 
-def load_yaml(path: Path, refused_aliases: Refusal | None = None) -> object:
+class _Ros2ParamsLoader(_LocatingLoader):
+    """A ROS 2 params file as rcl's parser reads it (rcl_yaml_param_parser/src/parse.c at
+    ros2/rcl bef8bd17): an alias refused ("Will not support aliasing"), and a plain scalar that
+    strtod reads whole, such as 5e-1, a number (get_value), where YAML 1.1 reads it as text."""
+
+    def compose_node(self, parent: Node | None, index: int) -> Node | None:
+        if self.check_event(AliasEvent):
+            line = self.peek_event().start_mark.line + 1  # type: ignore[no-untyped-call]
+            raise SpecError(
+                Location(self.path, line),
+                "",
+                "a YAML alias (*name): ROS 2's parameter parser refuses one (\"Will not "
+                'support aliasing"), so the nodes would not start with this file',
+                "write the value out in full where the alias stands",
+            )
+        return super().compose_node(parent, index)
+
+
+_Ros2ParamsLoader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(r"^[-+]?([0-9]+(\.[0-9]*)?|\.[0-9]+)[eE][-+]?[0-9]+$"),
+    list("-+0123456789."),
+)
+
+
+def load_yaml(path: Path, ros_params: bool = False) -> object:
     """Parse one YAML file into YamlMap, YamlList and scalars; None when it holds nothing.
-    With `refused_aliases`, an alias is an error at its line."""
+    `ros_params`: the file is a ROS 2 params file, read as ROS 2 reads one."""
     size = _size(path)
     if size > MAX_BYTES:
         raise SpecError(
@@ -195,7 +213,7 @@ def load_yaml(path: Path, refused_aliases: Refusal | None = None) -> object:
             "check that this is the file you meant: a pairs, robot, navigation or scanner file",
         )
     text = read_text(path)
-    loader = _LocatingLoader(text, path, refused_aliases)
+    loader = (_Ros2ParamsLoader if ros_params else _LocatingLoader)(text, path)
     try:
         return loader.get_single_data()
     except yaml.MarkedYAMLError as error:

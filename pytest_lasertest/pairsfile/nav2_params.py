@@ -26,15 +26,6 @@ RELEASE_FIX = (
 )
 
 
-# ROS 2's parameter parser refuses a YAML alias (parse_file_events: "Will not support aliasing",
-# rcl_yaml_param_parser/src/parse.c at ros2/rcl bef8bd17): Nav2 would not start with the file.
-ALIASES = (
-    'a YAML alias (*name): ROS 2\'s parameter parser refuses one ("Will not support aliasing"), '
-    "so Nav2 would not start with this file",
-    "write the value out in full where the alias stands",
-)
-
-
 # The keys that name Nav2's configuration: in a robot file, and in a pairs file's navigation:.
 NAV2_KEYS = ("nav2", "nav2_version")
 
@@ -76,7 +67,7 @@ def load_nav2_file(node: SpecNode, release: str) -> tuple[Parameter, ...]:
             "relative to this file",
         )
     root = read_root(
-        path, what="Nav2 params file", needs="nodes with ros__parameters", refused_aliases=ALIASES
+        path, what="Nav2 params file", needs="nodes with ros__parameters", ros_params=True
     )
     where: dict[tuple[str, str], SpecNode] = {}
     for name, node_parameters in _nodes(root):

@@ -597,3 +597,42 @@ def test_a_yaml_alias_is_refused_at_its_line_as_ros_2_refuses_it(tmp_path: Path)
     )
     with pytest.raises(SpecError, match="Will not support aliasing"):
         load(tmp_path, team=bomb)
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "problem"),
+    [
+        ("controller_frequency: 40.0", "controller_frequency: .inf", "must be a finite number"),
+        ("controller_frequency: 40.0", "controller_frequency: .nan", "must be a finite number"),
+        ("controller_frequency: 40.0", "controller_frequency: 1.0e+9", "beyond any navigation"),
+        ("batch_size: 1000", "batch_size: " + "9" * 401, "is beyond any Nav2 configuration"),
+        (
+            "max_decel: [-2.5, 0.0, -3.2]",
+            "max_decel: [-.inf, 0.0, -3.2]",
+            "holds a figure that is not a finite number",
+        ),
+    ],
+    ids=["infinite-rate", "nan-rate", "gigahertz-rate", "401-digits", "infinite-limit"],
+)
+def test_figures_no_configuration_holds_are_errors_at_their_line(
+    tmp_path: Path, old: str, new: str, problem: str
+) -> None:
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, team=TEAM.replace(old, new, 1))
+    assert (
+        raised.value.location.line
+        == TEAM.splitlines().index(next(line for line in TEAM.splitlines() if old in line)) + 1
+    )
+    assert problem in raised.value.problem
+
+
+def test_a_number_with_an_exponent_and_no_dot_is_a_number_as_ros_2_reads_it(
+    tmp_path: Path,
+) -> None:
+    # rcl's get_value reads a plain 4e1 with strtod; YAML 1.1 would read it as text.
+    team = TEAM.replace("controller_frequency: 40.0", "controller_frequency: 4e1")
+    robot = load(tmp_path, team=team).robot  # type: ignore[attr-defined]
+    assert configure(robot.nav2, robot.nav2_release).settings.controller_frequency == 40.0
+    quoted = TEAM.replace("controller_frequency: 40.0", 'controller_frequency: "4e1"')
+    with pytest.raises(SpecError, match="is a number, not '4e1'"):
+        load(tmp_path, team=quoted)

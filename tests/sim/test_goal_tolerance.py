@@ -85,3 +85,30 @@ def test_a_stuck_window_that_is_not_a_positive_number_of_seconds_fails_the_drive
 ) -> None:
     with pytest.raises(ControllerError, match="stuck_window"):
         pause(window)
+
+
+class TicksFast(StopsShort):
+    """StopsShort with a clock that asks for a call a billion times a second."""
+
+    control_frequency = 1.0e9
+
+    def __init__(self) -> None:
+        super().__init__(None)
+        self.calls = 0
+
+    def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> tuple[float, float]:
+        self.calls += 1
+        return super().observe(scan, odometry, time)
+
+
+def test_a_controller_clock_faster_than_the_physics_is_called_once_a_step_without_hanging() -> None:
+    made: list[TicksFast] = []
+
+    def make(robot: Robot, route: tuple[Point2D, ...]) -> TicksFast:
+        made.append(TicksFast())
+        return made[0]
+
+    scenario = Scenario(PAPER.robot, PROFILE, (), Pose2D(0.0, 0.0, 0.0), GOAL, 2.0, seed=0)
+    run_scenario(scenario, make)
+    # 2 s of 0.02 s steps: a call at each, not a billion a second.
+    assert 100 <= made[0].calls <= 102

@@ -5,6 +5,7 @@ for can be listed as not read."""
 from __future__ import annotations
 
 import dataclasses
+import math
 from typing import Any
 
 from pytest_lasertest.model.robot import ParameterValue
@@ -54,6 +55,14 @@ MAY_BE_NEGATIVE = frozenset(
 )
 # Past these a figure is a typo, and the cycle would take seconds and gigabytes.
 LARGEST = {"batch_size": 100_000, "time_steps": 1_000, "iteration_count": 100}
+# Hz: no navigation stack's clock runs faster; the simulation steps at 50 Hz.
+FASTEST = 1_000.0
+# Beyond this any figure of these files is a typo: a kilometre-wide costmap is 1e3 m.
+HUGE = 1e12
+# The figures that may be infinite: ranges and heights, as "no limit".
+MAY_BE_INFINITE = frozenset(
+    {"obstacle_max_range", "raytrace_max_range", "max_obstacle_height", "transform_tolerance"}
+)
 
 
 class ParameterProblem(ValueError):
@@ -87,6 +96,10 @@ class NodeParameters:
             return default
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise self.problem(name, f"is a number, not {value!r}", "write a number")
+        if isinstance(value, int) and abs(value) > HUGE:
+            raise self.problem(
+                name, f"{value} is beyond any Nav2 configuration", "check the figure"
+            )
         if whole and value != int(value):
             raise self.problem(name, f"is a whole number, not {value}", "write a whole number")
         return _checked(self, name, float(value))
@@ -132,6 +145,10 @@ class NodeParameters:
                 name,
                 f"is a list of {len(default)} numbers, not {value!r}",
                 "write e.g. [0.5, 0.0, 2.0]",
+            )
+        if not all(abs(v) <= HUGE for v in value):  # type: ignore[arg-type]
+            raise self.problem(
+                name, f"holds a figure that is not a finite number: {value!r}", "check it"
             )
         return tuple(float(v) for v in value)  # type: ignore[arg-type]
 
@@ -182,6 +199,14 @@ class NodeParameters:
 
 def _checked(node: NodeParameters, name: str, value: float) -> float:
     leaf = name.rsplit(".", 1)[-1]
+    if math.isnan(value) or (math.isinf(value) and leaf not in MAY_BE_INFINITE):
+        raise node.problem(name, f"must be a finite number, not {value}", "write a number")
+    if leaf.endswith("frequency") and value > FASTEST:
+        raise node.problem(
+            name,
+            f"{value:g} Hz is beyond any navigation stack's clock (at most {FASTEST:g} Hz here)",
+            "check the figure: Nav2's servers run at 1 to 100 Hz",
+        )
     if leaf in POSITIVE and value <= 0.0:
         raise node.problem(name, f"must be above zero, not {value}", f"write a positive {leaf}")
     if leaf not in MAY_BE_NEGATIVE and value < 0.0:
