@@ -636,3 +636,17 @@ def test_a_number_with_an_exponent_and_no_dot_is_a_number_as_ros_2_reads_it(
     quoted = TEAM.replace("controller_frequency: 40.0", 'controller_frequency: "4e1"')
     with pytest.raises(SpecError, match="is a number, not '4e1'"):
         load(tmp_path, team=quoted)
+
+
+def test_a_misspelt_node_or_parameter_is_listed_unread_with_the_name_meant(
+    tmp_path: Path,
+) -> None:
+    team = TEAM.replace("      batch_size: 1000", "      batch_sise: 1000").replace(
+        "amcl:", "controler_server:"
+    )
+    robot = load(tmp_path, team=team).robot  # type: ignore[attr-defined]
+    unread = configure(robot.nav2, robot.nav2_release).unmodelled
+    assert "controller_server: FollowPath.batch_sise (did you mean FollowPath.batch_size?)" in (
+        unread
+    )
+    assert "controler_server: every parameter (1) (did you mean controller_server?)" in unread

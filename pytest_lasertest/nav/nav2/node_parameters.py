@@ -77,14 +77,20 @@ class NodeParameters:
     """One node's parameters, read typed; each read is marked used."""
 
     def __init__(
-        self, node: str, values: dict[str, ParameterValue], used: set[tuple[str, str]]
+        self,
+        node: str,
+        values: dict[str, ParameterValue],
+        used: set[tuple[str, str]],
+        asked: set[tuple[str, str]] | None = None,
     ) -> None:
         self.node, self.values, self.used = node, values, used
+        self.asked = set() if asked is None else asked  # every name read for, set or not
 
     def problem(self, name: str, problem: str, fix: str) -> ParameterProblem:
         return ParameterProblem(self.node, name, problem, fix)
 
     def get(self, name: str) -> ParameterValue | None:
+        self.asked.add((self.node, name))
         if name not in self.values:
             return None
         self.used.add((self.node, name))

@@ -16,6 +16,7 @@ say once what was left out.
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import functools
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -69,10 +70,11 @@ def configure(parameters: Iterable[Parameter], release: str = "jazzy") -> Nav2Co
         return Nav2Config(Nav2Settings(release=release), ())
     nodes = _by_node(given)
     used: set[tuple[str, str]] = set()
+    asked: set[tuple[str, str]] = set()
     settings = code_defaults(release)
     for node, read in READERS.items():
-        settings = read(NodeParameters(node, nodes.get(node, {}), used), settings)
-    return Nav2Config(settings, _unmodelled(given, nodes, used))
+        settings = read(NodeParameters(node, nodes.get(node, {}), used, asked), settings)
+    return Nav2Config(settings, _unmodelled(given, nodes, used, asked))
 
 
 # The node a params file's "/**" (or a node named "*") sets: every node.
@@ -94,20 +96,30 @@ def _unmodelled(
     parameters: tuple[Parameter, ...],
     nodes: dict[str, dict[str, ParameterValue]],
     used: set[tuple[str, str]],
+    asked: set[tuple[str, str]],
 ) -> tuple[str, ...]:
+    """One line per node of what no reader read, with the name meant where one is near it:
+    "amcl: every parameter (37)", "controller_server: failure_tolerance, ..."."""
     wild = {name for node, name, _ in parameters if node == WILDCARD}
     own = {(node, name) for node, name, _ in parameters if node != WILDCARD}
     lines = []
     for node, values in nodes.items():
         left = [name for name in values if (node, name) not in used and (node, name) in own]
         if node not in READERS and left:
-            lines.append(f"{node}: every parameter ({len(left)})")
+            lines.append(f"{node}: every parameter ({len(left)}){_meant(node, READERS)}")
         elif left:
-            lines.append(f"{node}: {', '.join(left)}")
+            read = {name for asked_node, name in asked if asked_node == node}
+            lines.append(f"{node}: {', '.join(name + _meant(name, read) for name in left)}")
     unread = [name for name in wild if not any((node, name) in used for node in READERS)]
     if unread:
         lines.append(f"{WILDCARD}: {', '.join(sorted(unread))}")
     return tuple(lines)
+
+
+def _meant(name: str, known: Iterable[str]) -> str:
+    """The note ' (did you mean X?)' for the known name X nearest a misspelt `name`, if any."""
+    near = difflib.get_close_matches(name, sorted(known), n=1, cutoff=0.85)
+    return f" (did you mean {near[0]}?)" if near else ""
 
 
 def _controller_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
