@@ -18,6 +18,7 @@ import numpy as np
 from pytest_lasertest.inputs.node import Bounds, SpecNode
 from pytest_lasertest.model.geometry import FULL_TURN, FloatArray, Point2D, Pose2D
 from pytest_lasertest.model.obstacles import Box, polygon_clearance
+from pytest_lasertest.model.occupancy import UNKNOWN, OccupancyGrid
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import Leg, NominalPath, nominal_path, place, swept_polygons
 from pytest_lasertest.model.walls import NO_WALLS, Walls
@@ -103,6 +104,9 @@ def read_world(node: SpecNode, robot: Robot) -> World:
     waypoints = [fields["goal"]] if "goal" in fields else _waypoints(fields["route"])
     route = _route(start, waypoints)
     route_node = fields.get("route", fields.get("goal", node))
+    if "map" in fields and walls.grid is not None:
+        ends = [(fields["start"], Point2D(start.x, start.y))]
+        _check_on_map(walls.grid, ends + [(node, _point(node)) for node in waypoints])
     if walls:
         _check_ends(start, route, walls, robot, fields)
         if "goal" in fields:
@@ -147,6 +151,24 @@ def _check_ends(
         raise (node or fields["start"]).error(
             f"the goal ({goal.x:g}, {goal.y:g}) lies inside a wall",
             "move the goal into free space, clear of every wall",
+        )
+
+
+def _check_on_map(grid: OccupancyGrid, points: list[tuple[SpecNode, Point2D]]) -> None:
+    """Refuse a start or waypoint the map does not know: off it, or on a cell it leaves
+    unknown. The map is all Nav2's static layer and move_base's know of the world, and NavFn
+    would not plan to a goal off it; a map of one cell, or of unknown space, would leave the
+    route in open ground where the team meant walls."""
+    for node, point in points:
+        if grid.values_at(np.array([[point.x, point.y]]))[0] != UNKNOWN:
+            continue
+        (low_x, low_y), side = grid.origin, grid.resolution
+        span = f"x {low_x:g} to {low_x + grid.width * side:g} m, y {low_y:g} to "
+        span += f"{low_y + grid.height * side:g} m"
+        raise node.error(
+            f"({point.x:g}, {point.y:g}) lies off the map or on a cell it leaves unknown (the "
+            f"map spans {span}): Nav2's and move_base's planners would not plan there",
+            "move it onto the map's free space, or give a map that covers the route",
         )
 
 

@@ -477,3 +477,39 @@ def test_each_world_of_the_test_data_reads_its_map_as_walls(
     assert spec.world.walls
     last = spec.world.route[-1]
     assert (last.x, last.y) == pytest.approx(goal)
+
+
+def _doorway(tmp_path: Path, old: str = "", new: str = "", pixels: Pixels | None = None) -> Path:
+    """examples/worlds/doorway.lasertest.yaml and its map copied to tmp_path, `old` replaced by
+    `new` in the pairs file, the map's image replaced by `pixels` if given."""
+    for name in ("doorway.lasertest.yaml", "doorway.yaml", "doorway.pgm"):
+        (tmp_path / name).write_bytes((WORLDS / name).read_bytes())
+    pairs = tmp_path / "doorway.lasertest.yaml"
+    pairs.write_text(pairs.read_text().replace(old, new))
+    if pixels is not None:
+        Image.fromarray(np.array(pixels, dtype=np.uint8)).save(tmp_path / "doorway.pgm")
+    return pairs
+
+
+UNKNOWN_GREY = 205  # map_saver's unknown
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "pixels", "line", "point"),
+    [
+        ("goal: {x: 8.5, y: 3.8}", "goal: {x: 28.5, y: 3.8}", None, 11, "(28.5, 3.8)"),
+        ("", "", [[WHITE]], 10, "(1.5, 1.2)"),
+        ("", "", np.full((120, 200), UNKNOWN_GREY), 10, "(1.5, 1.2)"),
+    ],
+    ids=["goal-20-m-off-the-map", "a-one-cell-map", "an-all-unknown-map"],
+)
+def test_a_start_or_goal_the_map_does_not_know_is_an_error_at_its_line(
+    tmp_path: Path, old: str, new: str, pixels: Pixels | None, line: int, point: str
+) -> None:
+    from pytest_lasertest.pairsfile import load_pairs_file
+
+    with pytest.raises(SpecError) as raised:
+        load_pairs_file(_doorway(tmp_path, old, new, pixels))
+    assert raised.value.location.line == line
+    assert f"{point} lies off the map or on a cell it leaves unknown" in raised.value.problem
+    assert "give a map that covers the route" in raised.value.fix
