@@ -137,7 +137,7 @@ def read_recording(path: Path, topic: str | None = None) -> Recording:
         name, total = _choose_topic(reader, path, topic)
         connections = [item for item in reader.connections if item.topic == name]
         decoded = islice(_decoded(reader, connections, path), MAX_MESSAGES)
-        scans = tuple(_scan(message, log_time) for log_time, message in decoded)
+        scans = tuple(_laser_scan(path, name, message, log_time) for log_time, message in decoded)
     finally:
         reader.close()
     if not scans:
@@ -274,6 +274,21 @@ RECORD_ONE = "record the scanner's LaserScan topic (e.g. `ros2 bag record /scan`
 
 def _name_one(scans: list[str]) -> str:
     return f"name one of its LaserScan topics: {', '.join(scans)}" if scans else RECORD_ONE
+
+
+def _laser_scan(path: Path, topic: str, message: _LaserScan, log_time: int) -> Scan:
+    """`_scan`, or a BagError where the message is no LaserScan as ROS defines one: a bag
+    holds the definition each type was recorded with, and its own may lack a field."""
+    try:
+        return _scan(message, log_time)
+    except (AttributeError, TypeError, ValueError) as error:
+        raise BagError(
+            path,
+            f"a message on {topic} is not a sensor_msgs/msg/LaserScan as ROS defines it, by the "
+            f"definition the bag holds ({error})",
+            "record the scanner's driver with ROS's own sensor_msgs/msg/LaserScan",
+            about="topic",
+        ) from None
 
 
 def _scan(message: _LaserScan, log_time: int) -> Scan:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from pytest_lasertest.inputs.bags import BagError
+from pytest_lasertest.inputs.bags import BagError, read_recording
 from pytest_lasertest.inputs.inferred import (
     LATENCY_NOTE,
     InferredProfile,
@@ -20,7 +20,15 @@ from pytest_lasertest.inputs.inferred import (
     profile_from_bag,
 )
 from pytest_lasertest.model.driver import DEFAULT_DRIVER
-from tests.helpers.bags import FORMATS, Format, laser_scans, with_ranges, write_bag
+from tests.helpers.bags import (
+    FORMATS,
+    LASERSCAN,
+    START,
+    Format,
+    laser_scans,
+    with_ranges,
+    write_bag,
+)
 
 SCAN_TIME = 1.0 / 40.0  # s, the scans' period
 
@@ -340,3 +348,30 @@ def test_scans_that_share_no_beam_layout_by_half_are_refused(tmp_path: Path) -> 
         "10 with 100 beams from -2 rad every 0.0222222 rad; "
     )
     assert error.fix == "record one configuration of the scanner at a time, or cut the bag to one"
+
+
+def test_a_bag_whose_own_laserscan_definition_lacks_ranges_is_refused_naming_the_field(
+    tmp_path: Path,
+) -> None:
+    # A bag holds the definition each type was recorded with; this one's LaserScan has no
+    # ranges, and reading its messages must say so, not raise.
+    from rosbags.rosbag2 import StoragePlugin, Writer
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+    jazzy = get_typestore(Stores.ROS2_JAZZY)
+    store = get_typestore(Stores.EMPTY)
+    store.register({name: d for name, d in jazzy.fielddefs.items() if name != LASERSCAN})
+    store.register(get_types_from_msg("std_msgs/Header header\nfloat32 range_max\n", LASERSCAN))
+    types = store.types
+    time = types["builtin_interfaces/msg/Time"](sec=1, nanosec=0)
+    message = types[LASERSCAN](
+        header=types["std_msgs/msg/Header"](stamp=time, frame_id="laser"), range_max=10.0
+    )
+    path = tmp_path / "bag"
+    with Writer(path, version=9, storage_plugin=StoragePlugin.MCAP) as writer:
+        connection = writer.add_connection("/scan", LASERSCAN, typestore=store)
+        writer.write(connection, START, store.serialize_cdr(message, LASERSCAN))
+    with pytest.raises(BagError) as raised:
+        read_recording(path)
+    assert "is not a sensor_msgs/msg/LaserScan as ROS defines it" in raised.value.problem
+    assert "ranges" in raised.value.problem
