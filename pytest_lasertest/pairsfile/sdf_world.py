@@ -75,7 +75,12 @@ def read_sdf_walls(node: SpecNode) -> tuple[Box, ...]:
             "the file is not an SDF world: its root is no <sdf> holding a <world>",
             "point `sdf:` at a Gazebo world file (.world or .sdf)",
         )
-    walls = tuple(wall for world in worlds for wall in _world_walls(world, locate))
+    if len(worlds) > 1:
+        raise locate(worlds[1]).error(
+            "the file holds a second <world>: Gazebo loads one world from a file",
+            "keep the world the robot drives in, one <world> to the file",
+        )
+    walls = tuple(_world_walls(worlds[0], locate))
     if len(walls) > MAX_WALLS:
         raise node.error(
             f"{display_path(path)} holds {len(walls)} static boxes, more than the {MAX_WALLS} "
@@ -125,8 +130,50 @@ def _world_walls(world: XmlElement, locate: Locate) -> list[Box]:
                 "copy the model's static collision boxes into the world file, or list them "
                 "under `walls:`, and remove the <include>",
             )
+    for population in (element for element in world.walk() if element.tag == "population"):
+        raise locate(population).error(
+            "a <population> of models is not read by the gate: dropping it would let the "
+            "robot drive through them",
+            "write each model of the population out as a <model> with its <pose>, or list "
+            "their boxes under `walls:`",
+        )
     models = world.all("model")
+    _check_state(world, models, locate)
     return [box for model in models for box in _model_walls(model, Pose3D(), False, locate)]
+
+
+# m, rad: a state's pose further than this from a model's own moves it.
+MOVED = 1e-6
+
+
+def _check_state(world: XmlElement, models: tuple[XmlElement, ...], locate: Locate) -> None:
+    """Refuse a model a `<state>` (what Gazebo writes when it saves a world) puts elsewhere than
+    its own `<pose>`: the gate reads the `<pose>`, and Gazebo would load the world as saved."""
+    by_name = {model.get("name"): model for model in models if _is_static(model)}
+    for state in world.all("state"):
+        for moved in state.all("model"):
+            model = by_name.get(moved.get("name"))
+            if model is None or moved.child("pose") is None:
+                continue
+            saved = sdf_pose(moved.child("pose"), locate)
+            own = sdf_pose(model.child("pose"), locate)
+            if _moves(saved, own):
+                raise locate(moved).error(
+                    f"the world's <state> puts the model {moved.get('name')!r} at "
+                    f"{_shown(saved)}, not at its <pose> {_shown(own)}: Gazebo saved the world "
+                    "with it moved, and the gate reads the <pose>",
+                    "copy the state's pose into the model's <pose>, or delete the <state>",
+                )
+
+
+def _moves(saved: Pose3D, own: Pose3D) -> bool:
+    """Whether two poses differ, in position or in rotation (however the angles are written)."""
+    moved = np.abs(np.subtract(saved.xyz, own.xyz)).max()
+    return bool(moved > MOVED or np.abs(saved.rotation() - own.rotation()).max() > MOVED)
+
+
+def _shown(pose: Pose3D) -> str:
+    return " ".join(f"{value:g}" for value in (*pose.xyz, *pose.rpy))
 
 
 def _model_walls(model: XmlElement, parent: Pose3D, static: bool, locate: Locate) -> list[Box]:

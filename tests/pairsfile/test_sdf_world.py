@@ -301,3 +301,61 @@ def test_gz_sims_example_world_is_refused_at_its_floating_lidar_box_not_at_its_m
         read_sdf_walls(sdf_node(tmp_path, world))
     assert (raised.value.location.line, raised.value.field) == (67, "<collision>")
     assert raised.value.problem == "the box's bottom lies 0.450 m above the ground"
+
+
+def _line_of(text: str, marker: str) -> int:
+    return next(number for number, line in enumerate(text.splitlines(), 1) if marker in line)
+
+
+def test_a_second_world_in_the_file_is_refused_at_it_as_gazebo_loads_one(tmp_path: Path) -> None:
+    second = '  </world>\n  <world name="other"><model name="m"/></world>\n</sdf>'
+    world = WORLD.replace("  </world>\n</sdf>", second)
+    with pytest.raises(SpecError) as raised:
+        read_sdf_walls(sdf_node(tmp_path, world))
+    assert raised.value.location.line == _line_of(world, '<world name="other">')
+    assert "a second <world>" in raised.value.problem
+
+
+SAVED = """\
+    <state world_name="default">
+      <model name="corridor"><pose>{pose}</pose></model>
+      <model name="cart"><pose>9 9 0 0 0 0</pose></model>
+    </state>
+  </world>"""
+
+
+@pytest.mark.parametrize(
+    ("pose", "refused"),
+    [("2 0 0 0 0 0", False), ("2 0 0 0 0 6.283185307179586", False), ("2 2 0 0 0 0", True)],
+    ids=["as-posed", "a-full-turn", "moved"],
+)
+def test_a_saved_worlds_state_that_moves_a_static_model_is_refused_at_the_state(
+    tmp_path: Path, pose: str, refused: bool
+) -> None:
+    # Gazebo writes every model's pose at saving into <state>; the cart, not static, is no wall.
+    world = WORLD.replace("  </world>", SAVED.format(pose=pose))
+    if not refused:
+        assert len(read_sdf_walls(sdf_node(tmp_path, world))) == 3
+        return
+    with pytest.raises(SpecError) as raised:
+        read_sdf_walls(sdf_node(tmp_path, world))
+    assert raised.value.location.line == _line_of(world, '<model name="corridor"><pose>2 2')
+    assert "puts the model 'corridor' at 2 2 0 0 0 0, not at its <pose> 2 0 0" in (
+        raised.value.problem
+    )
+
+
+def test_a_population_of_models_is_refused_at_its_line(tmp_path: Path) -> None:
+    population = """\
+    <population name="cans">
+      <model name="can"><static>true</static><link name="l"><collision name="c"><geometry>
+        <box><size>0.1 0.1 0.3</size></box></geometry></collision></link></model>
+      <pose>3 0 0 0 0 0</pose><box><size>2 2 0.01</size></box><model_count>10</model_count>
+      <distribution><type>random</type></distribution>
+    </population>
+  </world>"""
+    world = WORLD.replace("  </world>", population)
+    with pytest.raises(SpecError) as raised:
+        read_sdf_walls(sdf_node(tmp_path, world))
+    assert raised.value.location.line == _line_of(world, "<population")
+    assert "a <population> of models is not read" in raised.value.problem
