@@ -123,15 +123,29 @@ def rasterised(boxes: tuple[Box, ...], resolution: float, margin: float) -> Occu
 def drawn(grid: OccupancyGrid, boxes: tuple[Box, ...]) -> OccupancyGrid:
     """The grid with every cell a box covers any part of occupied."""
     data = grid.data.copy()
-    ys, xs = np.mgrid[0 : grid.height, 0 : grid.width]
-    cells = np.column_stack([xs.ravel(), ys.ravel()])
-    centres = (cells + 0.5) * grid.resolution + grid.origin
     for box in boxes:
         # A cell overlaps the box when its centre lies within the box grown by half a cell's
-        # diagonal along each of the box's own axes (exact for an axis-aligned box).
+        # diagonal along each of the box's own axes (exact for an axis-aligned box). Only the
+        # cells round the grown box are tested: a map holds millions.
         turn = abs(math.cos(box.yaw)) + abs(math.sin(box.yaw))
-        data.ravel()[box_holds(box.grown(grid.resolution / 2.0 * turn), centres)] = OCCUPIED
+        grown = box.grown(grid.resolution / 2.0 * turn)
+        x0, x1 = _cells_within(grid, 0, box.x, grown.bounding_radius)
+        y0, y1 = _cells_within(grid, 1, box.y, grown.bounding_radius)
+        ys, xs = np.mgrid[y0:y1, x0:x1]
+        cells = np.column_stack([xs.ravel(), ys.ravel()])
+        centres = (cells + 0.5) * grid.resolution + grid.origin
+        held = box_holds(grown, centres).reshape(ys.shape)
+        data[y0:y1, x0:x1][held] = OCCUPIED
     return OccupancyGrid(grid.resolution, grid.origin, data)
+
+
+def _cells_within(grid: OccupancyGrid, axis: int, centre: float, reach: float) -> tuple[int, int]:
+    """The cells [first, last + 1) along `axis` (0: x, 1: y) whose centres may lie within
+    `reach` m of `centre` m, clipped to the grid."""
+    cells = grid.width if axis == 0 else grid.height
+    low = math.floor((centre - reach - grid.origin[axis]) / grid.resolution)
+    high = math.ceil((centre + reach - grid.origin[axis]) / grid.resolution) + 1
+    return min(max(low, 0), cells), min(max(high, 0), cells)
 
 
 def _runs(occupied: npt.NDArray[np.bool_]) -> list[tuple[int, int]]:

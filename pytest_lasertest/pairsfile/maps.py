@@ -41,6 +41,7 @@ from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.inputs.files import FileKind, UnreadableFile, read_regular_file
 from pytest_lasertest.inputs.node import Bounds, SpecNode, describe, read_root
 from pytest_lasertest.model.occupancy import FREE, OCCUPIED, UNKNOWN, Cells, OccupancyGrid
+from pytest_lasertest.model.walls import MAP_RESOLUTION, WALL_HEIGHT
 from pytest_lasertest.nav.move_base.settings import MAX_CELLS
 
 if TYPE_CHECKING:
@@ -74,6 +75,11 @@ THRESHOLD = Bounds(
 )
 # The same bound as a costmap's side (16 million cells): the global costmap takes the map's size.
 MAX_MAP_SIDE = MAX_CELLS  # cells
+# And in metres: a costmap of the common 0.05 m cells over a map this wide has MAX_CELLS a side.
+MAX_MAP_EXTENT = MAX_CELLS * MAP_RESOLUTION  # m
+# Each occupied run of a map is a box the simulator steps and casts every scan against; a
+# speckled map of 800 x 800 cells makes 74,000 of them.
+MAX_MAP_WALLS = 5_000
 # An uncompressed 4000 x 4000 RGBA image is 64 MB, and so is an ASCII PGM of 4000 x 4000.
 MAX_IMAGE_BYTES = 80 * 1024 * 1024  # bytes
 IMAGE_FILE = FileKind(
@@ -145,7 +151,29 @@ def read_map(node: SpecNode) -> OccupancyGrid:
     grey, alpha = _read_image(fields.image, fields.image_node)
     cells = _occupancy(grey, alpha, fields)
     # map_server flips the image (its first row is the map's top) so that row 0 is the bottom.
-    return OccupancyGrid(fields.resolution, fields.origin, cells[::-1])
+    grid = OccupancyGrid(fields.resolution, fields.origin, cells[::-1])
+    _check_extent(grid, fields.image_node)
+    return grid
+
+
+def _check_extent(grid: OccupancyGrid, node: SpecNode) -> None:
+    """Refuse a map wider than the stacks' costmaps cover, or one that makes more wall boxes
+    than the simulator steps: each bound alone lets through a map that breaks the other."""
+    width, height = grid.width * grid.resolution, grid.height * grid.resolution  # m
+    if max(width, height) > MAX_MAP_EXTENT:
+        raise node.error(
+            f"the map spans {width:g} x {height:g} m, wider than the {MAX_MAP_EXTENT:g} m a side "
+            f"the gate accepts: the global costmap takes the map's size, and at the common 0.05 "
+            f"m cells that is {MAX_CELLS} cells a side",
+            "crop the map to the part the robot drives through",
+        )
+    boxes = len(grid.wall_boxes(WALL_HEIGHT))
+    if boxes > MAX_MAP_WALLS:
+        raise node.error(
+            f"the map's occupied cells make {boxes:,} wall boxes, more than the "
+            f"{MAX_MAP_WALLS:,} the simulator steps and casts every scan against",
+            "clean the map of its speckle (isolated occupied cells), or coarsen it",
+        )
 
 
 def _read_map_file(path: Path) -> _MapFile:

@@ -21,14 +21,14 @@ from pytest_lasertest.model.obstacles import Box, polygon_clearance
 from pytest_lasertest.model.occupancy import UNKNOWN, OccupancyGrid
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import Leg, NominalPath, nominal_path, place, swept_polygons
-from pytest_lasertest.model.walls import NO_WALLS, Walls
+from pytest_lasertest.model.walls import MAP_MARGIN, NO_WALLS, Walls
 from pytest_lasertest.nav.move_base.settings import (
     NavigationSettings,
     costmap_cells,
     global_costmap_size,
 )
 from pytest_lasertest.nav.waypoints import CLEARANCE, plan_route
-from pytest_lasertest.pairsfile.maps import read_map
+from pytest_lasertest.pairsfile.maps import MAX_MAP_EXTENT, read_map
 from pytest_lasertest.pairsfile.sdf_world import read_sdf_walls
 from pytest_lasertest.pairsfile.walls import read_walls
 
@@ -126,7 +126,22 @@ def _walls(fields: dict[str, SpecNode]) -> Walls:
         listed += read_sdf_walls(fields["sdf"])
     if "map" in fields:
         return Walls.mapped(read_map(fields["map"]), listed)
+    if listed:
+        _check_walls_extent(listed, fields.get("walls", fields.get("sdf")))
     return Walls.listed(listed)
+
+
+def _check_walls_extent(walls: tuple[Box, ...], node: SpecNode | None) -> None:
+    """Refuse walls spread wider than a map of them may be: they are drawn into one at
+    MAP_RESOLUTION, and walls kilometres apart would make one of billions of cells."""
+    corners = np.array([corner for wall in walls for corner in wall.corners()])
+    width, height = corners.max(axis=0) - corners.min(axis=0) + 2.0 * MAP_MARGIN
+    if max(width, height) > MAX_MAP_EXTENT and node is not None:
+        raise node.error(
+            f"the walls spread over {width:g} x {height:g} m, wider than the "
+            f"{MAX_MAP_EXTENT:g} m a side the gate draws into a map",
+            "keep the walls of the part the robot drives through",
+        )
 
 
 def _check_ends(

@@ -513,3 +513,60 @@ def test_a_start_or_goal_the_map_does_not_know_is_an_error_at_its_line(
     assert raised.value.location.line == line
     assert f"{point} lies off the map or on a cell it leaves unknown" in raised.value.problem
     assert "give a map that covers the route" in raised.value.fix
+
+
+# The world's size: each bound alone would let through a world that breaks another.
+
+
+def test_a_map_wider_than_the_costmaps_cover_is_an_error_at_its_image_line(tmp_path: Path) -> None:
+    # 250 cells of 1 m: few cells, but 250 m, 5000 cells a side of a 0.05 m costmap.
+    text = MAP.replace("resolution: 0.05", "resolution: 1.0")
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, np.full((250, 250), WHITE), text)
+    assert raised.value.location.line == 1
+    assert "the map spans 250 x 250 m, wider than the 200 m a side" in raised.value.problem
+
+
+def test_a_speckled_map_of_more_wall_boxes_than_the_simulator_steps_is_an_error(
+    tmp_path: Path,
+) -> None:
+    speckle = np.where(np.random.default_rng(0).random((300, 300)) < 0.15, BLACK, WHITE)
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, speckle)
+    assert "wall boxes, more than the 5,000 the simulator steps" in raised.value.problem
+    assert "clean the map of its speckle" in raised.value.fix
+
+
+def test_walls_kilometres_apart_are_an_error_at_the_walls_line(tmp_path: Path) -> None:
+    from pytest_lasertest.pairsfile import load_pairs_file
+
+    far = """\
+robot: husky
+world:
+  start: {x: 0.0, y: 0.0, yaw: 0.0}
+  goal: {x: 5.0, y: 0.0}
+  time_limit: 60.0
+  walls:
+    - {x: 0.0, y: 3.0, length: 2.0, width: 0.2, height: 2.0}
+    - {x: 9000.0, y: -9000.0, length: 2.0, width: 0.2, height: 2.0}
+pairs:
+  same: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
+"""
+    with pytest.raises(SpecError) as raised:
+        load_pairs_file(write(tmp_path, far))
+    assert raised.value.location.line == 6
+    assert "the walls spread over 9004 x 9005.2 m, wider than the 200 m" in raised.value.problem
+
+
+def test_five_hundred_walls_are_drawn_into_a_map_of_16_million_cells(
+    tmp_path: Path,
+) -> None:
+    # Each wall is drawn over the cells round it, not tested against all 16 million.
+    from pytest_lasertest.model.obstacles import Box
+    from pytest_lasertest.model.occupancy import drawn
+
+    grid = OccupancyGrid(0.05, (0.0, 0.0), np.zeros((4000, 4000), dtype=np.int8))
+    walls = tuple(
+        Box(2.0 * (i % 90) + 1, 2.0 * (i // 90) + 1, 0.3, 1.0, 0.2, 1.0) for i in range(500)
+    )
+    assert (drawn(grid, walls).data == 100).sum() > 500 * 80  # 1.0 x 0.2 m: 80 cells each
