@@ -12,6 +12,10 @@ from pytest_lasertest.model.geometry import FloatArray, Pose3D
 # A ROS 2 parameter's value, as a params file gives it.
 ParameterValue = bool | int | float | str | tuple["ParameterValue", ...]
 
+# The largest mobile robots are a few metres across; costmaps rasterise the footprint in cells.
+# As far as a footprint's corner or a collision shape may lie from the base.
+MAX_FOOTPRINT_REACH = 20.0  # m
+
 
 @dataclass(frozen=True)
 class Robot:

@@ -24,6 +24,7 @@ import numpy as np
 from pytest_lasertest.inputs.node import Bounds, SpecNode
 from pytest_lasertest.model.body import HUSKY_BODY, SHAPE_SIZES, SHAPES, Body, Collision, Shape
 from pytest_lasertest.model.geometry import Pose3D
+from pytest_lasertest.model.robot import MAX_FOOTPRINT_REACH
 from pytest_lasertest.pairsfile.described import DescribedLaser
 
 # A body's height: one the laser's rays pass over, or a tower no wheeled base is.
@@ -42,9 +43,6 @@ LENGTH = Bounds(
     "no part of a wheeled robot is 5 m across",
     above_low=True,
 )
-# The largest mobile robots are a few metres across; costmaps rasterise the footprint in cells.
-# As far as a footprint's corner or a collision shape may lie from the base.
-MAX_FOOTPRINT_REACH = 20.0  # m
 MAX_COLLISIONS = 200  # a description has a few dozen links; PyBullet tests each shape per step
 BODY_FIX = (
     "write `body: husky` (pybullet_data's Husky, driven through its wheels), "

@@ -18,9 +18,9 @@ from pathlib import Path
 from pytest_lasertest.inputs.node import Bounds, SpecNode, read_root
 from pytest_lasertest.model.body import Body
 from pytest_lasertest.model.geometry import Pose3D
-from pytest_lasertest.model.robot import Robot, pad_footprint
+from pytest_lasertest.model.robot import MAX_FOOTPRINT_REACH, Robot, pad_footprint
 from pytest_lasertest.model.scanner_limits import ProfileError, check_mount
-from pytest_lasertest.pairsfile.body import BODY_FIX, MAX_FOOTPRINT_REACH, described_body, read_body
+from pytest_lasertest.pairsfile.body import BODY_FIX, described_body, read_body
 from pytest_lasertest.pairsfile.bundled import ROBOT_FILE, bundled_robots
 from pytest_lasertest.pairsfile.described import (
     DESCRIPTION_KEYS,

@@ -2,9 +2,8 @@
 .cpp), rebuilt on what stands for FootprintCollisionChecker in our Nav2: the behaviours'
 collision check (`Nav2._collides`, whether the footprint's outline at a pose, rasterised edge by
 edge as footprintCost does, meets a cost of lethal or more in the local costmap), on a local
-costmap of
-100 x 100 cells of 0.1 m from (0, 0); and the footprint strings of the same file on our reading
-of a params file's `footprint` (`configure`).
+costmap of 100 x 100 cells of 0.1 m from (0, 0); and the footprint strings of the same file on
+our reading of a params file's `footprint` (`costmap_params.footprint_from_string`).
 
 Our check answers lethal or not, where footprintCostAtPose gives the highest cost on the
 outline; on these costmaps, which hold only 0 and 254, the cost is 0 exactly where no lethal
@@ -21,10 +20,9 @@ import pytest
 from pytest_lasertest.model.geometry import Point2D
 from pytest_lasertest.nav.move_base.cost_values import FREE, LETHAL
 from pytest_lasertest.nav.move_base.costmap import CostmapSettings
+from pytest_lasertest.nav.nav2.costmap_params import footprint_from_string
 from pytest_lasertest.nav.nav2.nav2 import Nav2
-from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
 from pytest_lasertest.nav.nav2.settings import CostmapConfig, Nav2Settings
-from tests.helpers.nav2_params import local_footprint
 from tests.helpers.paper import PAPER
 from tests.helpers.upstream import NAVIGATION2_JAZZY, NotPorted, Source
 
@@ -108,9 +106,9 @@ def test_a_footprint_meets_a_lethal_cell_in_the_middle_of_its_edge() -> None:
 
 
 def footprint(text: str) -> tuple[tuple[float, float], ...]:
-    """The local costmap's footprint (m) of a params file whose `footprint` is `text`,
-    unpadded (makeFootprintFromString does not pad)."""
-    return local_footprint({"footprint": text, "footprint_padding": 0.0})
+    """makeFootprintFromString's footprint (m) of `text`: our reader's of a params file's
+    `footprint`, before the reach the gate allows a robot (which -4e4 m exceeds)."""
+    return footprint_from_string(text)
 
 
 @FOOTPRINT.test("collision_footprint.make_footprint_from_string", assertions=10)
@@ -126,19 +124,19 @@ def test_a_footprint_string_of_numbers_without_leading_zeros_is_read() -> None:
 
 @FOOTPRINT.test("collision_footprint.make_footprint_from_string_parse_error", assertions=1)
 def test_a_footprint_string_that_is_not_a_list_is_refused() -> None:
-    with pytest.raises(ParameterProblem, match="footprint"):
+    with pytest.raises(ValueError, match="cannot be read"):
         footprint("[[bad_string")
 
 
 @FOOTPRINT.test("collision_footprint.make_footprint_from_string_two_points_error", assertions=1)
 def test_a_footprint_string_of_two_points_is_refused() -> None:
-    with pytest.raises(ParameterProblem, match="footprint"):
+    with pytest.raises(ValueError, match="cannot be read"):
         footprint("[[1, 2.2], [.3, -4e4]")
-    with pytest.raises(ParameterProblem, match="three or more"):
+    with pytest.raises(ValueError, match="three or more"):
         footprint("[[1, 2.2], [.3, -4e4]]")
 
 
 @FOOTPRINT.test("collision_footprint.make_footprint_from_string_not_pairs", assertions=1)
 def test_a_footprint_string_with_a_point_of_three_numbers_is_refused() -> None:
-    with pytest.raises(ParameterProblem, match="three or more"):
+    with pytest.raises(ValueError, match="three or more"):
         footprint("[[1, 2.2], [.3, -4e4], [-.3, -4e4], [-1, 2.2, 5.6]]")

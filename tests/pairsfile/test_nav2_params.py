@@ -372,6 +372,31 @@ CASES = {
         "is not set: Nav2 refuses to configure without it",
         "write inflation_layer.plugin: nav2_costmap_2d::ObstacleLayer or",
     ),
+    # Resources: each figure within its bounds, not together.
+    "MPPI samples no cycle could score": Case(
+        "batch_size: 1000",
+        "batch_size: 100000",
+        7,
+        "controller_server.ros__parameters.FollowPath.batch_size",
+        "100,000 samples of 56 steps are 5,600,000 points every cycle",
+        "lower batch_size or time_steps",
+    ),
+    "a costmap of more cells than any run marks": Case(
+        "      width: 4\n      height: 4",
+        "      width: 4000\n      height: 4000",
+        14,
+        "local_costmap.resolution",
+        "4000 m at 0.1 m a cell is 40,000 cells a side, more than the 4000",
+        "coarsen resolution to at least 1 m, or narrow the costmap",
+    ),
+    "a footprint 2 km long": Case(
+        '"[[0.55, 0.45], [0.55, -0.45], [-0.55, -0.45], [-0.55, 0.45]]"',
+        '"[[2000, 0.45], [2000, -0.45], [-0.55, -0.45], [-0.55, 0.45]]"',
+        16,
+        "local_costmap.local_costmap.ros__parameters.footprint",
+        "reaches 2000.01 m from the robot's origin",
+        "within 20 m of its origin",
+    ),
 }
 
 
@@ -650,3 +675,21 @@ def test_a_misspelt_node_or_parameter_is_listed_unread_with_the_name_meant(
         unread
     )
     assert "controler_server: every parameter (1) (did you mean controller_server?)" in unread
+
+
+def test_dwb_rolling_out_more_poses_than_any_cycle_scores_is_an_error_at_vx_samples() -> None:
+    from pytest_lasertest.nav.nav2.dwb import CRITICS
+    from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
+    from tests.helpers.nav2_params import nav2_settings
+
+    server = {
+        "FollowPath.plugin": "dwb_core::DWBLocalPlanner",
+        "FollowPath.critics": CRITICS,
+        "FollowPath.max_vel_x": 0.5,
+        "FollowPath.vx_samples": 1000,
+        "FollowPath.vtheta_samples": 1000,
+    }
+    with pytest.raises(ParameterProblem) as raised:
+        nav2_settings({"controller_server": server})
+    assert raised.value.name == "FollowPath.vx_samples"
+    assert "more than the 200,000 the gate accepts" in raised.value.problem

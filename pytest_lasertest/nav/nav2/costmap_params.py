@@ -6,11 +6,13 @@ inflation_layer.cpp at jazzy f4108e5b)."""
 from __future__ import annotations
 
 import dataclasses
+import math
 import re
 
 import numpy as np
 
-from pytest_lasertest.model.robot import pad_footprint
+from pytest_lasertest.model.robot import MAX_FOOTPRINT_REACH, pad_footprint
+from pytest_lasertest.nav.move_base.settings import MAX_CELLS
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
 from pytest_lasertest.nav.nav2.settings import (
     DEFAULT_FOOTPRINT_PADDING,
@@ -43,8 +45,22 @@ def read_costmap(node: NodeParameters, config: CostmapConfig, rolls: bool) -> Co
         update_frequency=node.number("update_frequency", config.costmap.update_frequency),
         track_unknown_space=node.flag("track_unknown_space", config.costmap.track_unknown_space),
     )
+    _check_cells(node, costmap.size, costmap.resolution)
     config = dataclasses.replace(config, costmap=costmap, footprint=_footprint(node, config))
     return _layers(node, config)
+
+
+def _check_cells(node: NodeParameters, size: float, resolution: float) -> None:
+    """Refuse a costmap of more cells than the gate marks, inflates and plans through."""
+    cells = size / resolution
+    if cells > MAX_CELLS:
+        raise node.problem(
+            "resolution",
+            f"{size:g} m at {resolution:g} m a cell is {cells:,.0f} cells a side, more than the "
+            f"{MAX_CELLS} the gate accepts ({cells**2:,.0f} cells, raytraced and inflated at "
+            "every update)",
+            f"coarsen resolution to at least {size / MAX_CELLS:g} m, or narrow the costmap",
+        )
 
 
 def has_static_layer(node: NodeParameters) -> bool:
@@ -88,26 +104,42 @@ def _footprint(
     text = node.text("footprint", "[]")
     padding = node.number("footprint_padding", DEFAULT_FOOTPRINT_PADDING)
     if text.strip() not in ("", "[]"):
-        return pad_footprint(_polygon(node, text), padding)
-    return radius_footprint(node.number("robot_radius", DEFAULT_ROBOT_RADIUS), padding)
+        name, footprint = "footprint", pad_footprint(_polygon(node, text), padding)
+    else:
+        radius = node.number("robot_radius", DEFAULT_ROBOT_RADIUS)
+        name, footprint = "robot_radius", radius_footprint(radius, padding)
+    reach = max(math.hypot(x, y) for x, y in footprint)
+    if reach > MAX_FOOTPRINT_REACH:
+        raise node.problem(
+            name,
+            f"reaches {reach:g} m from the robot's origin: no mobile robot is that large, and "
+            "the costmaps rasterise the footprint cell by cell",
+            f"give the robot's outline in m, within {MAX_FOOTPRINT_REACH:g} m of its origin",
+        )
+    return footprint
 
 
 def _polygon(node: NodeParameters, text: str) -> tuple[tuple[float, float], ...]:
-    """makeFootprintFromString: at least three [x, y] pairs, read as parseVVF reads them."""
+    """`footprint_from_string`, its refusal a problem at `footprint`."""
     try:
-        rows = parse_vvf(text)
+        return footprint_from_string(text)
     except ValueError as error:
         raise node.problem(
             "footprint",
-            f"cannot be read as a list of [x, y] points: {error}: {text!r}",
+            f"{error}: {text!r}",
             'write e.g. "[[0.5, 0.4], [0.5, -0.4], [-0.5, -0.4], [-0.5, 0.4]]"',
         ) from None
+
+
+def footprint_from_string(text: str) -> tuple[tuple[float, float], ...]:
+    """makeFootprintFromString (nav2_costmap_2d/src/footprint.cpp at jazzy f4108e5b): at least
+    three [x, y] pairs, read as parseVVF reads them; ValueError with the reason otherwise."""
+    try:
+        rows = parse_vvf(text)
+    except ValueError as error:
+        raise ValueError(f"cannot be read as a list of [x, y] points: {error}") from None
     if len(rows) < 3 or any(len(row) != 2 for row in rows):
-        raise node.problem(
-            "footprint",
-            f"is not a polygon of three or more [x, y] points: {text!r}",
-            'write e.g. "[[0.5, 0.4], [0.5, -0.4], [-0.5, -0.4], [-0.5, 0.4]]"',
-        )
+        raise ValueError("is not a polygon of three or more [x, y] points")
     return tuple((x, y) for x, y in rows)
 
 

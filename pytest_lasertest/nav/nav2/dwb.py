@@ -46,6 +46,7 @@ Where this differs from DWB on purpose:
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -198,6 +199,16 @@ def _valid_speeds(s: DwbSettings, speed_sq: F64, theta: F64) -> Bools:
     valid &= ~(too_slow & (s.min_speed_xy >= 0.0) & (s.min_speed_theta >= 0.0))
     valid &= ~((speed_sq == 0.0) & (theta == 0.0))
     return valid
+
+
+def rollout_poses(s: DwbSettings) -> int:
+    """The most poses a cycle rolls out: every sampled twist, the longest steps of any."""
+    longest = max(
+        s.max_vel_x * s.sim_time / s.linear_granularity,
+        s.max_vel_theta * s.sim_time / s.angular_granularity,
+        abs(s.min_vel_x) * s.sim_time / s.linear_granularity,
+    )
+    return (s.vx_samples + 1) * (s.vtheta_samples + 1) * (math.ceil(longest) + 2)
 
 
 def roll_out(s: DwbSettings, pose: Pose, speed: tuple[float, float], vx: F64, wz: F64) -> Rollouts:

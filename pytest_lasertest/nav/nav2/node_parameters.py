@@ -31,6 +31,9 @@ POSITIVE = frozenset(
         "simulation_time_step",
         "min_points",
         "robot_radius",
+        "sim_time",
+        "linear_granularity",
+        "angular_granularity",
     }
 )
 # Lower limits and decelerations, negative by nature.

@@ -22,9 +22,10 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from pytest_lasertest.model.robot import ParameterValue
+from pytest_lasertest.nav.move_base.settings import MAX_ROLLOUT_POSES
 from pytest_lasertest.nav.move_base.static_layer import StaticLayerSettings
 from pytest_lasertest.nav.nav2.costmap_params import has_static_layer, read_costmap
-from pytest_lasertest.nav.nav2.dwb import CODE_DEFAULTS, DwbSettings
+from pytest_lasertest.nav.nav2.dwb import CODE_DEFAULTS, DwbSettings, rollout_poses
 from pytest_lasertest.nav.nav2.dwb import CRITICS as DWB_CRITICS
 from pytest_lasertest.nav.nav2.mppi import SAME_PERIOD
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
@@ -40,6 +41,8 @@ Parameter = tuple[str, str, ParameterValue]
 MPPI = "nav2_mppi_controller::MPPIController"
 DWB = "dwb_core::DWBLocalPlanner"
 NAVFN = "nav2_navfn_planner::NavfnPlanner"
+# MPPI's samples x steps a cycle: nav2_params.yaml's 2000 x 56 is 112,000.
+MAX_MPPI_POINTS = 1_000_000
 # Read but not imitated, for a reason docs/explanation/navigation.md gives: the routes here
 # have no goal heading.
 NOT_IMITATED_CRITICS = frozenset({"GoalAngleCritic"})
@@ -178,6 +181,14 @@ def _mppi(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
             "FollowPath.motion_model", "the robots here are differential drives", "write DiffDrive"
         )
     mppi = node.fields("FollowPath.", settings.mppi)
+    if mppi.batch_size * mppi.time_steps > MAX_MPPI_POINTS:
+        raise node.problem(
+            "FollowPath.batch_size",
+            f"{mppi.batch_size:,} samples of {mppi.time_steps} steps are "
+            f"{mppi.batch_size * mppi.time_steps:,} points every cycle, more than the "
+            f"{MAX_MPPI_POINTS:,} the gate accepts: a run would take hours",
+            "lower batch_size or time_steps (nav2_params.yaml: 2000 x 56)",
+        )
     # Optimizer::getParams takes ax_max's magnitude and turns a positive ax_min negative,
     # with a warning (optimizer.cpp:90-97 at jazzy f4108e5b).
     mppi = dataclasses.replace(mppi, ax_max=abs(mppi.ax_max), ax_min=-abs(mppi.ax_min))
@@ -241,6 +252,16 @@ def _dwb(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
     }
     dwb = node.fields("FollowPath.", CODE_DEFAULTS, renamed, exclude=("critics",))
     dwb = dataclasses.replace(dwb, critics=critics)
+    poses = rollout_poses(dwb)
+    if poses > MAX_ROLLOUT_POSES:
+        raise node.problem(
+            "FollowPath.vx_samples",
+            f"DWB would roll out {poses:,} poses every cycle (vx_samples x vtheta_samples "
+            "trajectories of sim_time over the granularities' steps), more than the "
+            f"{MAX_ROLLOUT_POSES:,} the gate accepts: a run would take hours",
+            "lower vx_samples, vtheta_samples or sim_time, or raise linear_granularity and "
+            "angular_granularity",
+        )
     return dataclasses.replace(settings, dwb=dwb, prune_distance=dwb.prune_distance)
 
 

@@ -4,6 +4,7 @@ of the move_base and Nav2 parameters a `navigation:` sets."""
 from __future__ import annotations
 
 from pytest_lasertest.model.body import SHAPE_SIZES
+from pytest_lasertest.model.robot import MAX_FOOTPRINT_REACH
 from pytest_lasertest.nav.move_base.settings import LIMITS, parameter_types
 from pytest_lasertest.nav.nav2.settings import NEWEST_JAZZY, RELEASES
 from pytest_lasertest.pairsfile import body, robot
@@ -28,8 +29,8 @@ from pytest_lasertest.pairsfile.schema.terms import (
 # A coordinate of a footprint corner or a collision shape (m): no farther from the base.
 _REACHED = {
     "type": "number",
-    "minimum": -body.MAX_FOOTPRINT_REACH,
-    "maximum": body.MAX_FOOTPRINT_REACH,
+    "minimum": -MAX_FOOTPRINT_REACH,
+    "maximum": MAX_FOOTPRINT_REACH,
 }
 # The fields a robot needs whatever gives its laser mount.
 ALWAYS_REQUIRED = tuple(
