@@ -20,7 +20,7 @@ import math
 from pytest_lasertest.descriptions.laser_block import Locate
 from pytest_lasertest.descriptions.mounts import link_poses, spinning_links, urdf_origin
 from pytest_lasertest.descriptions.xmlfile import XmlElement
-from pytest_lasertest.model.body import SHAPES, Body, Collision
+from pytest_lasertest.model.body import MAX_SHAPE_LENGTH, SHAPES, Body, Collision
 
 
 def collisions(robot: XmlElement, base: str, locate: Locate) -> tuple[Collision, ...] | None:
@@ -70,6 +70,13 @@ def _lengths(shape: XmlElement, attribute: str, count: int, locate: Locate) -> t
         raise locate(shape).error(
             f'<{shape.tag} {attribute}="{" ".join(words)}"> is not {count} positive length'
             f"{'s' if count > 1 else ''}",
+            f'write <{shape.tag} {attribute}="..."> in m, as URDF does',
+        )
+    if max(numbers) > MAX_SHAPE_LENGTH:
+        raise locate(shape).error(
+            f'<{shape.tag} {attribute}="{" ".join(words)}"> is larger than the '
+            f"{MAX_SHAPE_LENGTH:g} m any part of a wheeled robot is (the simulator would drive "
+            "it as the robot's body)",
             f'write <{shape.tag} {attribute}="..."> in m, as URDF does',
         )
     return numbers

@@ -48,7 +48,27 @@ def urdf_mount(robot: XmlElement, link: str, sensor: XmlElement, locate: Locate)
             f"no joint chain joins the sensor's link {link!r} to {base!r}",
             "join the laser's link to the robot with joints",
         )
+    _check_fixed(link, up_from_link, _chain(base, joints, locate), locate)
     return Mount(in_base.then(sdf_pose(sensor.child("pose"), locate)), base)
+
+
+def _check_fixed(
+    link: str, up_from_link: list[_Joint], up_from_base: list[_Joint], locate: Locate
+) -> None:
+    """Refuse a joint between the base and the sensor's link that moves: the laser's pose
+    would move with it (a laser turning about x on a continuous joint scans no level plane),
+    and the gate reads the mount at the joint's zero."""
+    shared = {id(joint) for joint in up_from_base}
+    for joint in up_from_link:
+        kind = joint.element.get("type")
+        if id(joint) not in shared and kind != "fixed":
+            raise locate(joint.element).error(
+                f"the sensor's link {link!r} hangs on the {kind} joint "
+                f"{joint.element.get('name')!r}: its pose moves with the joint, and the gate "
+                "tests a scanner fixed to the robot",
+                "mount the scanner on fixed joints; a turning or tilting scanner is no planar "
+                "laser the gate imitates",
+            )
 
 
 def link_poses(robot: XmlElement, base: str, locate: Locate) -> dict[str, Pose3D]:
@@ -98,7 +118,22 @@ def _joints(robot: XmlElement, links: set[str | None], locate: Locate) -> dict[s
                 "a URDF is a tree: give every link one parent joint, and remove the other",
             )
         joints[child] = _Joint(parent, urdf_origin(joint, locate), joint)
+    _check_one_root(robot, joints, locate)
     return joints
+
+
+def _check_one_root(robot: XmlElement, joints: Mapping[str, _Joint], locate: Locate) -> None:
+    """Refuse a second root link, one no joint joins to the rest (urdfdom's "Two root links
+    found"): whatever hangs from it is no part of the robot the file describes."""
+    roots = [link for link in robot.all("link") if link.get("name") not in joints]
+    if len(roots) > 1:
+        first, second = roots[0], roots[1]
+        raise locate(second).error(
+            f"link {second.get('name')!r} is a second root link: no joint joins it to "
+            f'{first.get("name")!r} and the rest (urdfdom refuses it: "Two root links '
+            'found")',
+            f"join {second.get('name')!r} to the robot with a joint, or remove it",
+        )
 
 
 def _link_of(joint: XmlElement, end: str, links: set[str | None], locate: Locate) -> str:

@@ -15,6 +15,8 @@ from pytest_lasertest.model.geometry import FloatArray, Pose3D
 Shape = Literal["box", "cylinder", "sphere"]
 # The primitives URDF defines, by their tags.
 SHAPES: dict[str, Shape] = {"box": "box", "cylinder": "cylinder", "sphere": "sphere"}
+# No part of a wheeled robot is larger: a robot file's and a description's shapes alike.
+MAX_SHAPE_LENGTH = 5.0  # m
 # The lengths each shape is given by, in the order a description gives them.
 SHAPE_SIZES: dict[Shape, tuple[str, ...]] = {
     "box": ("x", "y", "z"),

@@ -22,7 +22,15 @@ import dataclasses
 import numpy as np
 
 from pytest_lasertest.inputs.node import Bounds, SpecNode
-from pytest_lasertest.model.body import HUSKY_BODY, SHAPE_SIZES, SHAPES, Body, Collision, Shape
+from pytest_lasertest.model.body import (
+    HUSKY_BODY,
+    MAX_SHAPE_LENGTH,
+    SHAPE_SIZES,
+    SHAPES,
+    Body,
+    Collision,
+    Shape,
+)
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import MAX_FOOTPRINT_REACH
 from pytest_lasertest.pairsfile.described import DescribedLaser
@@ -37,7 +45,7 @@ BODY_HEIGHT = Bounds(
 )  # (the Husky's base: 0.39)
 LENGTH = Bounds(
     0.0,
-    5.0,
+    MAX_SHAPE_LENGTH,
     "m",
     "a shape has a size",
     "no part of a wheeled robot is 5 m across",

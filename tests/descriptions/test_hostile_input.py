@@ -256,6 +256,31 @@ HOSTILE = {
         "LASERTEST_UNSET_VARIABLE)), which is not set",
         "set LASERTEST_UNSET_VARIABLE where the gate runs, or give it a default",
     ),
+    "a laser on a joint that turns": Hostile(
+        {
+            "turning.urdf": ROBOT.replace(
+                'name="laser_joint" type="fixed"', 'name="laser_joint" type="continuous"'
+            )
+        },
+        "{urdf: turning.urdf}",
+        "turning.urdf",
+        11,
+        "the sensor's link 'laser' hangs on the continuous joint 'laser_joint': its pose moves "
+        "with the joint",
+        "mount the scanner on fixed joints",
+    ),
+    "a second root link": Hostile(
+        {
+            "two_roots.urdf": ROBOT.replace(
+                '  <link name="laser"/>', '  <link name="laser"/>\n  <link name="spare"/>'
+            )
+        },
+        "{urdf: two_roots.urdf}",
+        "two_roots.urdf",
+        11,
+        "link 'spare' is a second root link: no joint joins it to 'base_footprint'",
+        "join 'spare' to the robot with a joint, or remove it",
+    ),
 }
 
 

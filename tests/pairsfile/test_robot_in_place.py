@@ -207,6 +207,16 @@ def test_a_box_of_two_lengths_is_an_error_at_its_line_in_the_description(tmp_pat
     assert '<box size="0.6 0.4"> is not 3 positive lengths' in raised.value.problem
 
 
+def test_a_box_a_kilometre_long_is_an_error_at_its_line_in_the_description(
+    tmp_path: Path,
+) -> None:
+    huge = COLLIDING.replace('<box size="0.6 0.4 0.2"/>', '<box size="1000 0.4 0.2"/>')
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, WITHOUT_BODY, huge)
+    assert (raised.value.location.line, raised.value.field) == (7, "<box>")
+    assert "is larger than the 5 m any part of a wheeled robot is" in raised.value.problem
+
+
 CASES = {
     "a mount written beside the description": Case(
         "  body: {height: 0.3}\n",
