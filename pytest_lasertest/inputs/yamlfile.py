@@ -217,7 +217,7 @@ def load_yaml(path: Path, ros_params: bool = False) -> object:
     try:
         return loader.get_single_data()
     except yaml.MarkedYAMLError as error:
-        raise _syntax_error(path, error) from None
+        raise _syntax_error(path, error, text) from None
     except yaml.YAMLError as error:
         raise SpecError(
             Location(path, 1), "", f"this is not valid YAML: {error}", "fix the syntax"
@@ -226,9 +226,23 @@ def load_yaml(path: Path, ros_params: bool = False) -> object:
         loader.dispose()
 
 
-def _syntax_error(path: Path, error: yaml.MarkedYAMLError) -> SpecError:
+# YAML takes a key written without `? ` to be at most this long (the spec's 1024 characters).
+MAX_IMPLICIT_KEY = 1024
+
+
+def _syntax_error(path: Path, error: yaml.MarkedYAMLError, text: str) -> SpecError:
     mark = error.problem_mark or error.context_mark
     line = mark.line + 1 if mark is not None else 1
+    written = text.splitlines()[line - 1] if 0 < line <= len(text.splitlines()) else ""
+    key = written.split(":", 1)[0].strip()
+    if len(key) > MAX_IMPLICIT_KEY:
+        return SpecError(
+            Location(path, line),
+            "",
+            f"the key on this line is {len(key):,} characters long: YAML reads a key of at most "
+            f"{MAX_IMPLICIT_KEY:,} as one",
+            "give it a shorter name; a pair's or a node's name is a word or two",
+        )
     problem = f"this is not valid YAML: {error.problem or error.context}"
     if error.problem and error.context and error.context_mark is not None:
         # Where the parser gave up is often a line after the mistake; name where it began.

@@ -20,6 +20,14 @@ CASES = {
     "a tab in the indentation": Case(
         "  goal:", "\tgoal:", 4, "", "found character '\\t' that cannot start any token", "spaces"
     ),
+    "a pair name of 5,000 characters": Case(
+        "  to_lms111:",
+        "  " + "to_lms111" * 556 + ":",
+        11,
+        "",
+        "the key on this line is 5,004 characters long: YAML reads a key of at most 1,024",
+        "give it a shorter name",
+    ),
     "a misspelt key": Case(
         "samples: 720",
         "sampels: 720",
