@@ -20,6 +20,7 @@ from pytest_lasertest.pairsfile.schema import SHIPPED, pairs_file_schema, schema
 from pytest_lasertest.pairsfile.schema import world as world_schema
 from tests.helpers import EXAMPLES, REPO
 from tests.helpers.schema import dotted, schema_errors
+from tests.helpers.texts import write
 
 # One of every section, and of most kinds of value.
 GATE = """\
@@ -241,3 +242,26 @@ def test_a_key_the_loader_reads_and_the_schema_lacks_stops_the_schema_being_made
     monkeypatch.setattr(world_schema.world, "WORLD_KEYS", keys)
     with pytest.raises(KeyError, match="gravity"):
         pairs_file_schema()
+
+
+@pytest.mark.parametrize(
+    "driver",
+    ["{no_return: .nan, too_near: -.inf}", "{no_return: 0, too_near: .inf}", "{no_return: nan}"],
+    ids=["nan-and-minus-inf", "zero-and-inf", "words"],
+)
+def test_the_schema_takes_every_driver_spelling_the_loader_takes(
+    tmp_path: Path, driver: str
+) -> None:
+    text = EXAMPLE_DRIVER.format(driver=driver)
+    assert [error.message for error in schema_errors(text)] == []
+    load_pairs_file(write(tmp_path, text))
+
+
+EXAMPLE_DRIVER = """\
+robot: husky
+world: {{start: {{x: 0, y: 0}}, goal: {{x: 5, y: 0}}, time_limit: 30}}
+pairs:
+  nan:
+    baseline: {{model: hokuyo_ust_10lx}}
+    candidate: {{model: hokuyo_ust_10lx, driver: {driver}}}
+"""

@@ -184,6 +184,10 @@ def _driver_terms() -> dict[str, Schema]:
         "stamp": "The sweep instant the header stamp marks",
     }
     terms = {name: choice(CHOICES[name], about[name]) for name in CHOICES}
+    for name in ("no_return", "too_near"):
+        # YAML writes some of them as numbers, which the loader reads as their words.
+        spelled = {"type": "number", "description": "As YAML writes .inf, -.inf, .nan or 0"}
+        terms[name] = {"anyOf": [terms[name], spelled], "description": about[name]}
     latency = real("How much later than the measurement the stamp is", "s", low=0.0)
     return terms | {"latency": {**latency, "maximum": MAX_LATENCY}}
 
