@@ -29,6 +29,7 @@ What a recording tells, and how (each trait that is inferred, or cannot be, gets
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -135,6 +136,26 @@ def _built(path: Path, **fields: Any) -> LaserProfile:
         raise BagError(path, problem, error.fix, about="topic") from None
 
 
+# The layouts an error or a note names, the most common first: a bag holds thousands of scans.
+SHOWN = 3
+
+
+def _check_finite(recording: Recording) -> None:
+    """Refuse scans whose beams' geometry is no number: no layout can be made of it."""
+    fields = ("angle_min", "angle_increment", "angle_max", "range_min", "range_max")
+    for field in fields:
+        broken = [scan for scan in recording.scans if not math.isfinite(getattr(scan, field))]
+        if broken:
+            raise BagError(
+                recording.path,
+                f"{len(broken)} of its {len(recording.scans)} scans give {field} as "
+                f"{getattr(broken[0], field)}: no beam layout can be made of it",
+                "record the scanner's driver as it publishes for navigation: every LaserScan "
+                "field but the ranges a number",
+                about="topic",
+            )
+
+
 def _read_notes(recording: Recording) -> list[str]:
     count = len(recording.scans)
     if recording.total <= count:
@@ -145,16 +166,25 @@ def _read_notes(recording: Recording) -> list[str]:
 def _layout(recording: Recording, notes: list[str]) -> Layout:
     """The beams most scans share; BagError when fewer than half share any."""
     scans, path = recording.scans, recording.path
+    _check_finite(recording)
     layouts = Counter((scan.beams, scan.angle_min, scan.angle_increment) for scan in scans)
     layout, agree = layouts.most_common(1)[0]
     if 2 * agree < len(scans):
-        shown = "; ".join(f"{count} with {_layout_text(key)}" for key, count in layouts.items())
+        shown = "; ".join(
+            f"{count} with {_layout_text(key)}" for key, count in layouts.most_common(SHOWN)
+        )
+        if len(layouts) > SHOWN:
+            shown += f"; and {len(layouts) - SHOWN} layouts more"
         problem = f"its scans disagree on their beams, no layout shared by half of them: {shown}"
         fix = "record one configuration of the scanner at a time, or cut the bag to one"
         raise BagError(path, problem, fix, about="topic")
     if layout[0] == 0:
         raise BagError(path, "its scans hold no ranges", RECORD_ONE, about="topic")
-    others = [f"{count} had {_layout_text(key)}" for key, count in layouts.items() if key != layout]
+    others = [
+        f"{count} had {_layout_text(key)}" for key, count in layouts.most_common() if key != layout
+    ]
+    if len(others) > SHOWN:
+        others = [*others[:SHOWN], f"{len(others) - SHOWN} layouts more"]
     if others:
         notes.append(
             f"{len(scans) - agree} of {len(scans)} scans had other beams ({'; '.join(others)}); "

@@ -375,3 +375,22 @@ def test_a_bag_whose_own_laserscan_definition_lacks_ranges_is_refused_naming_the
         read_recording(path)
     assert "is not a sensor_msgs/msg/LaserScan as ROS defines it" in raised.value.problem
     assert "ranges" in raised.value.problem
+
+
+def test_scans_whose_beam_geometry_is_nan_are_refused_in_one_line(tmp_path: Path) -> None:
+    # NaN equals nothing, not even itself: each scan would have been a layout of its own, and
+    # the error listed every one of them.
+    scans = [replace(scan, angle_increment=math.nan) for scan in laser_scans(200)]
+    with pytest.raises(BagError) as raised:
+        profile_from_bag(write_bag(tmp_path / "bag", scans))
+    assert raised.value.problem == (
+        "200 of its 200 scans give angle_increment as nan: no beam layout can be made of it"
+    )
+
+
+def test_scans_of_many_layouts_name_the_three_most_common(tmp_path: Path) -> None:
+    scans = [with_ranges(scan, [1.0] * (20 + index)) for index, scan in enumerate(laser_scans(30))]
+    with pytest.raises(BagError) as raised:
+        profile_from_bag(write_bag(tmp_path / "bag", scans))
+    assert raised.value.problem.count(" with ") == 3
+    assert raised.value.problem.endswith("; and 27 layouts more")
