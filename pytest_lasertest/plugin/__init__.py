@@ -185,7 +185,8 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
     profile = (
         parse_profile(profile_text) if profile_text is not None else default_profile(os.environ)
     )
-    artifacts = config.getoption("laser_artifacts") or beside_html_report(config)
+    named = config.getoption("laser_artifacts")
+    artifacts = named or beside_html_report(config)
     examples = config.getoption("laser_examples")
     summary = config.getoption("laser_summary")
     return LaserOptions(
@@ -193,7 +194,7 @@ def read_options(config: pytest.Config, pairs: tuple[Path, ...]) -> LaserOptions
         profile=profile,
         policy=parse_policy(config.getoption("laser_policy")),
         artifacts=(
-            parse_artifacts(artifacts, config.invocation_params.dir)
+            parse_artifacts(artifacts, config.invocation_params.dir, beside_report=not named)
             if artifacts is not None
             else None
         ),

@@ -164,25 +164,26 @@ def parse_policy(text: str) -> Policy:
     return text
 
 
-def parse_artifacts(text: str, base: Path) -> Path:
+def parse_artifacts(text: str, base: Path, beside_report: bool = False) -> Path:
     """The directory that receives failure artifacts; created when the first one is written.
+    `beside_report`: it is pytest-html's, not one `--laser-artifacts` named, and the errors say so.
 
     Refused up front: an empty path, a path at a file or below one, and a directory this user
     cannot create or write to. What only writing can tell (a full disk, a folder where an
     artifact goes) is reported beside each failure instead.
     """
     path = base / text
+    if beside_report:
+        where = f"--html puts the failure artifacts beside its report, in {text!r}, which"
+        fix = "move what is there, or give --laser-artifacts=DIR to put them elsewhere"
+    else:
+        where = f"--laser-artifacts={text!r}"
+        fix = "give a directory this user can write to (it is created if missing)"
     if not text or (_nearest_existing(path) == path and not path.is_dir()):
-        raise pytest.UsageError(
-            f"--laser-artifacts={text!r} is not a directory: give a directory path "
-            "(it is created if missing)"
-        )
+        raise pytest.UsageError(f"{where} is not a directory: {fix}")
     problem = unwritable(path)
     if problem is not None:
-        raise pytest.UsageError(
-            f"--laser-artifacts={text!r}: {problem}: give a directory this user can write to "
-            "(it is created if missing)"
-        )
+        raise pytest.UsageError(f"{where}: {problem}: {fix}")
     return path
 
 

@@ -231,3 +231,17 @@ def test_a_bad_number_of_examples_is_a_usage_error_naming_it(
     result.stderr.fnmatch_lines(
         [f"ERROR: --laser-examples='{value}' is not a number of examples: give a whole number *"]
     )
+
+
+def test_a_file_where_the_html_reports_artifacts_go_is_refused_naming_html_not_our_option(
+    tmp_path: Path,
+) -> None:
+    # The user gave --html alone: the error names it, and --laser-artifacts as the way out.
+    (tmp_path / ".lasertest-artifacts").write_text("")
+    with pytest.raises(pytest.UsageError) as refused:
+        parse_artifacts(".lasertest-artifacts", tmp_path, beside_report=True)
+    assert str(refused.value) == (
+        "--html puts the failure artifacts beside its report, in '.lasertest-artifacts', which "
+        "is not a directory: move what is there, or give --laser-artifacts=DIR to put them "
+        "elsewhere"
+    )
