@@ -12,11 +12,12 @@ from __future__ import annotations
 import dataclasses
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import pytest
 
 from pytest_lasertest.inputs.errors import Location, SpecError
-from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.inputs.node import SpecNode, read_root
 from pytest_lasertest.model.sensor import same_sensing
 from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
 from pytest_lasertest.pairsfile.bundled import ROBOTS_DIR
@@ -30,6 +31,9 @@ from pytest_lasertest.plugin.items.coverage import CoverageItem
 from pytest_lasertest.plugin.items.pinned import pinned_items
 from pytest_lasertest.plugin.items.placement import placement_items
 from pytest_lasertest.plugin.session import LaserSession
+
+if TYPE_CHECKING:
+    from pytest_lasertest.nav.nav2.settings import Nav2Settings
 
 HOOK = "pytest_lasertest_make_controller"
 
@@ -93,6 +97,7 @@ class PairFile(pytest.File):
         from pytest_lasertest.nav.nav2.settings import describe
 
         config = configured(spec.robot.nav2, spec.robot.nav2_release)
+        self._check_reach(spec, config.settings)
         if spec.move_base_overrides:
             sections = sorted({section for section, _, _ in spec.move_base_overrides})
             self.warn(
@@ -103,6 +108,33 @@ class PairFile(pytest.File):
                 )
             )
         return dataclasses.replace(controller, stack=describe(config.settings)), config.unmodelled
+
+    def _check_reach(self, spec: PairsFile, settings: Nav2Settings) -> None:
+        """A collection error where Nav2's rolling global costmap cannot hold the next
+        waypoint from where the robot sets off for it: NavFn would plan no path, and every
+        drive would fail alike."""
+        from pytest_lasertest.nav.nav2.nav2 import global_window, out_of_reach
+
+        world = spec.world
+        start = (world.start.x, world.start.y)
+        index = out_of_reach(settings, start, world.route)
+        if index is None:
+            return
+        point, window = world.route[index], global_window(settings.global_, start, world.route)
+        raise self.CollectError(
+            str(
+                SpecError(
+                    route_location(self.path),
+                    "world.route",
+                    f"the waypoint ({point.x:g}, {point.y:g}) lies {window / 2:g} m or more from "
+                    f"where the robot sets off for it, beyond the half of Nav2's rolling global "
+                    f"costmap ({window:g} m wide, global_costmap's width) that holds it: NavFn "
+                    "would plan no path to it",
+                    "put waypoints closer together along the route, or widen the global "
+                    "costmap (width and height) in the Nav2 params file",
+                )
+            )
+        )
 
     def _note_unread(self, spec: PairsFile, unread: tuple[str, ...]) -> None:
         """Warn, once per params file in the session, of the parameters it sets that the Nav2
@@ -155,6 +187,13 @@ class PairFile(pytest.File):
         node = SpecNode(factory, Location(self.path, 1), "controller")
         checked = checked_factory(node, factory, f"the {HOOK} hook's factory {name}")
         return ControllerChoice(name, f"from the {HOOK} hook", checked)
+
+
+def route_location(path: Path) -> Location:
+    """Where the pairs file at `path` writes its route (or goal)."""
+    world = read_root(path, what="pairs file", needs="world").entries(what="sections")["world"]
+    fields = world.entries(what="world fields")
+    return fields.get("route", fields.get("goal", world)).location
 
 
 def _qualified_name(factory: object) -> str:

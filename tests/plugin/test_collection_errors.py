@@ -450,3 +450,34 @@ def test_a_broken_robot_file_is_a_collection_error_naming_its_line_and_field(
         [f"robots/mybot/robot.yaml:{line}: {field}: {problem}*", "  fix: *"]
     )
     result.stdout.no_fnmatch_line("*Traceback*")
+
+
+def test_a_waypoint_beyond_nav2s_rolling_global_costmap_is_a_collection_error_at_the_route(
+    pytester: pytest.Pytester,
+) -> None:
+    # The Husky's Clearpath parameters roll a 20 m global costmap with the robot: a goal 12 m
+    # ahead lies off it, and Nav2's NavFn plans no path to a goal off its costmap.
+    far = """\
+robot: husky
+controller: nav2
+world:
+  start: {x: 0.0, y: 0.0, yaw: 0.0}
+  route:
+    - {x: 5.0, y: 0.0}
+    - {x: 17.0, y: 0.0}
+  time_limit: 90.0
+pairs:
+  longer: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
+"""
+    (pytester.path / "gate.lasertest.yaml").write_text(far)
+    result = pytester.runpytest("-p", "no:randomly")
+    expected = Case(
+        "",
+        "",
+        5,
+        "world.route",
+        "the waypoint (17, 0) lies 10 m or more from where the robot sets off for it, beyond "
+        "the half of Nav2's rolling global costmap (20 m wide",
+        "put waypoints closer together along the route",
+    )
+    assert_one_clean_error(result, 5, "world.route", expected)

@@ -57,6 +57,7 @@ from pytest_lasertest.nav.nav2.velocity_smoother import VelocitySmoother
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 
 Pose = tuple[float, float, float]  # m, m, rad
+Route = tuple[Point2D, ...]  # m, the waypoints in order
 # The default tree's RoundRobin of recoveries (navigate_to_pose_w_replanning_and_recovery.xml).
 RECOVERIES = ("ClearingActions", "Spin", "Wait", "BackUp")
 
@@ -292,11 +293,8 @@ class Nav2:
         """A window wide enough for every cell a run along the route can mark, clear or plan
         through, centred where the robot starts (it rolls with the robot)."""
         s = self.settings
-        points = np.array([pose[:2], *((point.x, point.y) for point in self.route)])
-        span = float(np.hypot(*(points[:, np.newaxis] - points[np.newaxis]).T).max())  # m
         config = s.global_
-        reach = config.source.raytrace_max_range + config.costmap.inflation_radius + 1.0  # m
-        size = min(config.costmap.size, 2.0 * (span + reach))
+        size = global_window(config, (pose[0], pose[1]), self.route)
         settings = dataclasses.replace(config.costmap, size=size)
         static = config.static_layer if self._map is not None else None
         if static is not None:
@@ -395,6 +393,30 @@ class Nav2:
         along = np.concatenate([[0.0], np.cumsum(steps)])
         kept: F32 = path[along <= self.settings.prune_distance].astype(np.float32)
         return kept
+
+
+def global_window(config: CostmapConfig, start: tuple[float, float], route: Route) -> float:
+    """How wide the global costmap's window is (m): the configured width, or less where a run
+    from `start` along `route` can mark, clear and plan through no more."""
+    points = np.array([start, *((point.x, point.y) for point in route)])
+    span = float(np.hypot(*(points[:, np.newaxis] - points[np.newaxis]).T).max())  # m
+    reach = config.source.raytrace_max_range + config.costmap.inflation_radius + 1.0  # m
+    return min(config.costmap.size, 2.0 * (span + reach))
+
+
+def out_of_reach(settings: Nav2Settings, start: tuple[float, float], route: Route) -> int | None:
+    """The index of the first waypoint the planner cannot reach from where the robot sets off
+    for it: outside the rolling global costmap round that point (NavFn plans only within the
+    costmap, and a goal off it fails as GoalOutsideMapBounds), by at least the goal tolerance
+    and a cell; None if every one lies within."""
+    half = global_window(settings.global_, start, route) / 2.0
+    margin = settings.xy_goal_tolerance + settings.global_.costmap.resolution
+    previous = start
+    for index, point in enumerate(route):
+        if max(abs(point.x - previous[0]), abs(point.y - previous[1])) >= half - margin:
+            return index
+        previous = (point.x, point.y)
+    return None
 
 
 def _follow_path(s: Nav2Settings, seed: int) -> Optimizer | DwbController:
