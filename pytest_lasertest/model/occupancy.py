@@ -108,11 +108,16 @@ class OccupancyGrid:
         )
 
 
-def rasterised(boxes: tuple[Box, ...], resolution: float, margin: float) -> OccupancyGrid:
-    """A grid at `resolution` m, reaching `margin` m past the boxes, whose cells are occupied
-    where a box covers any part of them and free elsewhere: what a map of these walls drawn at
-    that resolution shows."""
-    corners = np.array([corner for box in boxes for corner in box.corners()])
+def rasterised(
+    boxes: tuple[Box, ...],
+    resolution: float,
+    margin: float,
+    covering: tuple[tuple[float, float], ...] = (),
+) -> OccupancyGrid:
+    """A grid at `resolution` m, reaching `margin` m past the boxes and the points `covering`
+    (m), whose cells are occupied where a box covers any part of them and free elsewhere: what
+    a map of these walls drawn at that resolution shows, of the ground the robot drives."""
+    corners = np.array([*(corner for box in boxes for corner in box.corners()), *covering])
     low = np.floor((corners.min(axis=0) - margin) / resolution) * resolution
     high = corners.max(axis=0) + margin
     width, height = (math.ceil(extent) for extent in (high - low) / resolution)

@@ -44,11 +44,15 @@ class Walls:
         return bool(self.boxes)
 
     @classmethod
-    def listed(cls, boxes: tuple[Box, ...]) -> Walls:
-        """Walls a pairs file lists, with their map drawn at MAP_RESOLUTION."""
+    def listed(
+        cls, boxes: tuple[Box, ...], covering: tuple[tuple[float, float], ...] = ()
+    ) -> Walls:
+        """Walls a pairs file lists, with their map drawn at MAP_RESOLUTION over them and the
+        points `covering` (m): the start and the waypoints, as a team maps where the robot
+        drives (a goal off the map would be unknown space to the stacks)."""
         if not boxes:
             return cls()
-        return cls(boxes, rasterised(boxes, MAP_RESOLUTION, MAP_MARGIN))
+        return cls(boxes, rasterised(boxes, MAP_RESOLUTION, MAP_MARGIN, covering))
 
     @classmethod
     def mapped(cls, grid: OccupancyGrid, listed: tuple[Box, ...] = ()) -> Walls:

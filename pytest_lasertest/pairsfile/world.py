@@ -100,9 +100,9 @@ def read_world(node: SpecNode, robot: Robot) -> World:
     if "time_limit" not in fields:
         raise node.missing("time_limit", "write the time the robot has to reach the goal, in s")
     start = _pose(fields["start"])
-    walls = _walls(fields)
     waypoints = [fields["goal"]] if "goal" in fields else _waypoints(fields["route"])
     route = _route(start, waypoints)
+    walls = _walls(fields, ((start.x, start.y), *((point.x, point.y) for point in route)))
     route_node = fields.get("route", fields.get("goal", node))
     if "map" in fields and walls.grid is not None:
         ends = [(fields["start"], Point2D(start.x, start.y))]
@@ -119,26 +119,29 @@ def read_world(node: SpecNode, robot: Robot) -> World:
     return world
 
 
-def _walls(fields: dict[str, SpecNode]) -> Walls:
-    """The walls of the world's map, those it lists and those of its SDF world."""
+def _walls(fields: dict[str, SpecNode], driven: tuple[tuple[float, float], ...]) -> Walls:
+    """The walls of the world's map, those it lists and those of its SDF world; the map of
+    listed and SDF walls covers them and the points `driven` (m), the start and waypoints."""
     listed = read_walls(fields["walls"]) if "walls" in fields else ()
     if "sdf" in fields:
         listed += read_sdf_walls(fields["sdf"])
     if "map" in fields:
         return Walls.mapped(read_map(fields["map"]), listed)
     if listed:
-        _check_walls_extent(listed, fields.get("walls", fields.get("sdf")))
-    return Walls.listed(listed)
+        _check_walls_extent(listed, driven, fields.get("walls", fields.get("sdf")))
+    return Walls.listed(listed, driven)
 
 
-def _check_walls_extent(walls: tuple[Box, ...], node: SpecNode | None) -> None:
+def _check_walls_extent(
+    walls: tuple[Box, ...], driven: tuple[tuple[float, float], ...], node: SpecNode | None
+) -> None:
     """Refuse walls spread wider than a map of them may be: they are drawn into one at
     MAP_RESOLUTION, and walls kilometres apart would make one of billions of cells."""
-    corners = np.array([corner for wall in walls for corner in wall.corners()])
+    corners = np.array([*(corner for wall in walls for corner in wall.corners()), *driven])
     width, height = corners.max(axis=0) - corners.min(axis=0) + 2.0 * MAP_MARGIN
     if max(width, height) > MAX_MAP_EXTENT and node is not None:
         raise node.error(
-            f"the walls spread over {width:g} x {height:g} m, wider than the "
+            f"the walls and the route spread over {width:g} x {height:g} m, wider than the "
             f"{MAX_MAP_EXTENT:g} m a side the gate draws into a map",
             "keep the walls of the part the robot drives through",
         )

@@ -555,7 +555,10 @@ pairs:
     with pytest.raises(SpecError) as raised:
         load_pairs_file(write(tmp_path, far))
     assert raised.value.location.line == 6
-    assert "the walls spread over 9004 x 9005.2 m, wider than the 200 m" in raised.value.problem
+    assert (
+        "the walls and the route spread over 9004 x 9005.2 m, wider than the 200 m"
+        in raised.value.problem
+    )
 
 
 def test_five_hundred_walls_are_drawn_into_a_map_of_16_million_cells(
@@ -570,3 +573,28 @@ def test_five_hundred_walls_are_drawn_into_a_map_of_16_million_cells(
         Box(2.0 * (i % 90) + 1, 2.0 * (i // 90) + 1, 0.3, 1.0, 0.2, 1.0) for i in range(500)
     )
     assert (drawn(grid, walls).data == 100).sum() > 500 * 80  # 1.0 x 0.2 m: 80 cells each
+
+
+def test_the_map_drawn_of_listed_walls_covers_the_start_and_the_route(tmp_path: Path) -> None:
+    # One wall 4 m beside the goal: drawn round the wall alone, the map left the start and the
+    # goal off it, unknown space to the stacks, and the Jackal circled its goal.
+    from pytest_lasertest.model.occupancy import FREE
+    from pytest_lasertest.pairsfile import load_pairs_file
+
+    beside = """\
+robot: jackal
+world:
+  start: {x: 0.0, y: 0.0, yaw: 0.0}
+  route:
+    - {x: 3.0, y: -2.0}
+    - {x: 6.0, y: 0.0}
+  time_limit: 60.0
+  walls:
+    - {x: 6.0, y: 4.0, length: 2.0, width: 0.2, height: 2.0}
+pairs:
+  same: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
+"""
+    grid = load_pairs_file(write(tmp_path, beside)).world.walls.grid
+    assert grid is not None
+    driven = np.array([[0.0, 0.0], [3.0, -2.0], [6.0, 0.0], [-0.9, -2.9], [6.9, 0.9]])
+    assert (grid.values_at(driven) == FREE).all()

@@ -111,7 +111,9 @@ def _unmodelled(
         if node not in READERS and left:
             lines.append(f"{node}: every parameter ({len(left)}){_meant(node, READERS)}")
         elif left:
-            read = {name for asked_node, name in asked if asked_node == node}
+            # A name the file sets beside the one it resembles is no misspelling of it:
+            # min_vel_y beside min_vel_x is DWB's own, for a holonomic robot.
+            read = {name for asked_node, name in asked if asked_node == node} - set(values)
             lines.append(f"{node}: {', '.join(name + _meant(name, read) for name in left)}")
     unread = [name for name in wild if not any((node, name) in used for node in READERS)]
     if unread:
