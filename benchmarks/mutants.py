@@ -5,7 +5,8 @@ stack, written as a team would have it: a filter or a setting tuned for the scan
 (the baseline), which does no harm with it and can do harm with the new one. A fault is put into
 the default controller, move_base, through the public controller interface: `faulty(mutant,
 baseline)` makes a controller factory that changes each scan (or the command) on its way in, as
-the team's filter node or misconfigured costmap would, and builds move_base with the mutant's
+the team's filter node or misconfigured costmap would (`protocol.InFront`, which keeps
+move_base's optional attributes), and builds move_base with the mutant's
 navigation parameters where the fault is a setting (a costmap's update rate, the planner's
 unknown space). Each names the source it imitates; the code is ours.
 
@@ -32,7 +33,13 @@ from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.nav.move_base import MoveBase
 from pytest_lasertest.nav.move_base.settings import NavigationSettings
-from pytest_lasertest.nav.protocol import Controller, ControllerFactory, LaserScan, Odometry
+from pytest_lasertest.nav.protocol import (
+    Controller,
+    ControllerFactory,
+    InFront,
+    LaserScan,
+    Odometry,
+)
 
 Command = tuple[float, float]  # m/s, rad/s
 # The navigation parameters the team set for the baseline scanner, from the robot's own.
@@ -62,18 +69,6 @@ class Mutant:
     navigation: Setting | None = None  # move_base's parameters as the fault has them
 
 
-@dataclass
-class FaultyController:
-    """move_base behind a faulty filter."""
-
-    inner: Controller
-    fault: Fault
-
-    def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> Command:
-        command = self.inner.observe(self.fault.scan(scan, odometry), odometry, time)
-        return self.fault.command(command, scan)
-
-
 def faulty(mutant: Mutant | None, baseline: LaserProfile) -> ControllerFactory:
     """move_base, with the mutant's fault tuned for `baseline` if one is given."""
 
@@ -83,7 +78,14 @@ def faulty(mutant: Mutant | None, baseline: LaserProfile) -> ControllerFactory:
         settings = NavigationSettings.from_parameters(robot.navigation)
         if mutant.navigation is not None:
             settings = mutant.navigation(settings, baseline)
-        return FaultyController(MoveBase(robot, route, settings), mutant.make(baseline))
+        fault = mutant.make(baseline)
+        # In front of move_base as a filter node is, its optional attributes kept
+        # (goal_tolerance, stuck_window, receive_map, ...): a fault changes scans, nothing else.
+        return InFront(
+            MoveBase(robot, route, settings),
+            lambda scan, odometry, time: fault.scan(scan, odometry),
+            fault.command,
+        )
 
     return make
 

@@ -50,8 +50,10 @@ from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.sensor import LaserScanMeta
 
 __all__ = [
+    "OPTIONAL",
     "Controller",
     "ControllerFactory",
+    "InFront",
     "LaserScan",
     "OccupancyGrid",
     "Odometry",
@@ -123,3 +125,45 @@ class Controller(Protocol):
 
 # Makes the controller of one run: the robot it drives and its route, the goal last.
 ControllerFactory = Callable[[Robot, tuple[Point2D, ...]], Controller]
+
+
+# The attributes a controller may have besides `observe` (this module's docstring).
+OPTIONAL = frozenset(
+    {
+        "goal_tolerance",
+        "control_frequency",
+        "stuck_window",
+        "activity",
+        "receive_map",
+        "published_costmap",
+        "published_plan",
+    }
+)
+Command = tuple[float, float]  # m/s, rad/s
+
+
+@dataclass
+class InFront:
+    """A controller with something in front of it: each scan passes `scans` (a laser_filters
+    chain, a fault) before `inner` sees it, and each command `commands` after, if given; every
+    optional attribute `inner` has (`OPTIONAL`) is `inner`'s own, so that the wrapped stack
+    keeps its clocks, goal checker, stuck window, map and report. A call between scans (the
+    inner's `control_frequency`) passes the same scan object again: it goes through `scans`
+    once, and its result is handed on again, as a filter chain runs once per message."""
+
+    inner: Controller
+    scans: Callable[[LaserScan, Odometry, float], LaserScan]
+    commands: Callable[[Command, LaserScan], Command] | None = None
+    _last: tuple[LaserScan, LaserScan] | None = None  # (as received, as passed on)
+
+    def observe(self, scan: LaserScan, odometry: Odometry, time: float) -> Command:
+        if self._last is None or self._last[0] is not scan:
+            self._last = (scan, self.scans(scan, odometry, time))
+        command = self.inner.observe(self._last[1], odometry, time)
+        return command if self.commands is None else self.commands(command, scan)
+
+    def __getattr__(self, name: str) -> object:
+        # Only missing attributes come here: the optional ones are the inner controller's.
+        if name in OPTIONAL and "inner" in self.__dict__:
+            return getattr(self.inner, name)
+        raise AttributeError(name)
