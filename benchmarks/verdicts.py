@@ -13,13 +13,18 @@ s skipped, p pre-existing, m marginal, c coverage-loss); and last
     items whose outcome changes between runs: K of N; failing items: F (in every run: A)
 
 Give `--policy candidate` for the verdict before `regression` was the default, and `--pytest`
-to run another checkout's code (a worktree of an older commit: its virtualenv's pytest).
+to run another checkout's code (a worktree of an older commit: its virtualenv's pytest, or this
+one's with PYTHONPATH naming the worktree) with `--source` naming the worktree, whose examples
+and test data are then the ones run. `--results DIR` keeps each run's JUnit XML in DIR and reads
+a run found there instead of running it again: a sweep of all the examples under eight seeds
+takes hours on two cores, and may be resumed, or reported from DIR alone.
 `--ci RUNS` runs each file RUNS times as a CI service does instead (`CI=true`, no `--laser-seed`
 or `--laser-profile`: each file's seed comes from its path, the profile is ci), to show that the
 same commit gives the same verdict: no item may change between the runs.
 
     python benchmarks/verdicts.py [FILE ...] [--seeds 0-7 | --ci RUNS] [--workers 2]
                                   [--policy regression] [--pytest .venv/bin/pytest] [-k EXPRESSION]
+                                  [--source CHECKOUT] [--results DIR]
 
 Without FILE, the harmless changes of tests/data/harmless/ (move_base and Nav2), which must
 pass under every seed.
@@ -117,8 +122,11 @@ class Runs:
         return command + (["-k", self.select] if self.select else [])
 
 
-def run(runs: Runs, file: str, seed: int | None) -> dict[str, str]:
-    """One run of `file` under `seed` (as on a CI service if None): each item's outcome letter."""
+def run(runs: Runs, file: str, seed: int | None, kept: Path | None) -> dict[str, str]:
+    """One run of `file` under `seed` (as on a CI service if None): each item's outcome letter.
+    Read from `kept` where an earlier sweep kept it there."""
+    if kept is not None and kept.exists():
+        return outcomes_in(kept)
     tree = runs.tree
     shutil.rmtree(tree / ".hypothesis", ignore_errors=True)
     report = tree / "verdicts.xml"
@@ -128,9 +136,10 @@ def run(runs: Runs, file: str, seed: int | None) -> dict[str, str]:
         environment["CI"] = "true"
     started = time.perf_counter()
     done = subprocess.run(command, cwd=tree, env=environment, capture_output=True, check=False)
-    cases = ET.parse(report).iter("testcase")
-    outcomes = {str(case.get("name")): letter(case) for case in cases}
-    # Progress, on stderr: a sweep of eight seeds takes the better part of an hour.
+    outcomes = outcomes_in(report)
+    if kept is not None:
+        shutil.copyfile(report, kept)
+    # Progress, on stderr: a sweep of eight seeds takes hours.
     letters = "".join(sorted(outcomes.values()))
     seconds = time.perf_counter() - started
     how = f"seed {seed}" if seed is not None else "as on CI"
@@ -142,11 +151,35 @@ def run(runs: Runs, file: str, seed: int | None) -> dict[str, str]:
     return outcomes
 
 
-def sweep(runs: Runs, file: str, seeds: Sequence[int | None]) -> Sweep:
-    """`file` under each seed (None: as on a CI service)."""
-    by_seed = [run(runs, file, seed) for seed in seeds]
+def outcomes_in(report: Path) -> dict[str, str]:
+    """Each item's outcome letter in one run's JUnit XML."""
+    return {str(case.get("name")): letter(case) for case in ET.parse(report).iter("testcase")}
+
+
+def kept_report(results: Path | None, file: str, seed: int | None, index: int) -> Path | None:
+    """Where the JUnit XML of `file`'s run under `seed` (the `index`th run) is kept, if it is."""
+    if results is None:
+        return None
+    how = f"seed{seed}" if seed is not None else f"ci{index}"
+    return results / f"{file.replace('/', '.')}.{how}.xml"
+
+
+def sweep_all(
+    runs: Runs, files: Sequence[str], seeds: Sequence[int | None], results: Path | None
+) -> list[Sweep]:
+    """Every file under each seed, a seed at a time over all files, so that a sweep cut short
+    has whole seeds in `results`."""
+    by_seed = [
+        {file: run(runs, file, seed, kept_report(results, file, seed, index)) for file in files}
+        for index, seed in enumerate(seeds)
+    ]
+    return [sweep_of(file, seeds, [outcomes[file] for outcomes in by_seed]) for file in files]
+
+
+def sweep_of(file: str, seeds: Sequence[int | None], by_seed: list[dict[str, str]]) -> Sweep:
+    """`file`'s sweep from its runs' outcomes, one dictionary a seed."""
     items = sorted(set().union(*by_seed))
-    outcomes = {item: tuple(runs.get(item, "-") for runs in by_seed) for item in items}
+    outcomes = {item: tuple(run.get(item, "-") for run in by_seed) for item in items}
     return Sweep(file, tuple(seeds), outcomes)
 
 
@@ -171,12 +204,16 @@ def main() -> None:
     parser.add_argument("--policy", default="regression")
     parser.add_argument("--pytest", default=str(REPO / ".venv" / "bin" / "pytest"))
     parser.add_argument("-k", dest="select", default=None, help="pytest's -k, to run fewer")
+    parser.add_argument("--source", type=Path, default=REPO, help="the checkout whose files run")
+    parser.add_argument("--results", type=Path, default=None, help="keep and reuse JUnit XML")
     args = parser.parse_args()
+    if args.results is not None:
+        args.results.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as scratch:
-        tree = checkout(Path(scratch))
+        tree = checkout(args.source, Path(scratch))
         runs = Runs(args.pytest, tree, args.workers, args.policy, args.select)
         seeds = (None,) * args.ci if args.ci else args.seeds
-        sweeps = [sweep(runs, file, seeds) for file in args.files]
+        sweeps = sweep_all(runs, args.files, seeds, args.results)
     for done in sweeps:
         print("\n".join(report(done)))
     total = sum(len(done.outcomes) for done in sweeps)
@@ -189,11 +226,11 @@ def main() -> None:
     )
 
 
-def checkout(tree: Path) -> Path:
-    """The examples and test data in `tree`, committed: the CI gate example reads its
-    description at HEAD."""
+def checkout(source: Path, tree: Path) -> Path:
+    """The examples and test data of `source` in `tree`, committed: the CI gate example reads
+    its description at HEAD."""
     for folder in ("examples", "tests/data"):
-        shutil.copytree(REPO / folder, tree / folder)
+        shutil.copytree(source / folder, tree / folder)
     identity = ["-c", "user.name=lasertest", "-c", "user.email=lasertest@localhost"]
     for command in (["init", "-q"], ["add", "-A"], [*identity, "commit", "-qm", "sweep"]):
         subprocess.run(["git", *command], cwd=tree, check=True, capture_output=True)
