@@ -104,10 +104,16 @@ def read_scan_filters(node: SpecNode) -> ScanFilterChain:
     if isinstance(root.value, YamlMap) and any(key in root.value for key in ROS1_CHAINS):
         ros: Ros = "ros1"
         filters = _ros1_chain(root)
-    else:
+    elif _holds_parameters(root.value):
         ros = "ros2"
         ros2_root = read_root(path, what="laser_filters params file", needs=needs, ros_params=True)
         filters = _ros2_chain(ros2_root)
+    else:
+        raise root.error(
+            "this is neither a ROS 1 chain (scan_filter_chain: a list of filters) nor a ROS 2 "
+            "params file (a node's ros__parameters)",
+            f"write the file your chain node loads; it holds {needs}",
+        )
     return ScanFilterChain(written, str(path.resolve()), ros, filters)
 
 
@@ -168,6 +174,13 @@ def _ros2_chain(root: SpecNode) -> tuple[NamedFilter, ...]:
     group = _group(found[0][1])
     _check_node_keys(group)
     return _named(_ros2_filters(group, FILTER_TYPES, "ros2"), group.node)
+
+
+def _holds_parameters(value: object) -> bool:
+    """Whether a YAML mapping holds a ROS 2 node's ros__parameters, at any depth."""
+    if not isinstance(value, YamlMap):
+        return False
+    return "ros__parameters" in value or any(_holds_parameters(inner) for inner in value.values())
 
 
 def _holds_filters(node: SpecNode) -> bool:
@@ -385,9 +398,7 @@ def _located(
     left = [name for name in problem.params if name not in params]
     notes = "".join(f" ({name} is left out: {spec[name].source})" for name in left)
     fix = (
-        f"write {' and '.join(left)} in the filter's params, or {problem.fix}"
-        if left
-        else problem.fix
+        f"set {' and '.join(left)} in the filter's params ({problem.fix})" if left else problem.fix
     )
     if given:
         return _node_of(params[given[-1]]).error(problem.problem + notes, fix)

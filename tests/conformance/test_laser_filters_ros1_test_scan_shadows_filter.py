@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Sequence
 
 from pytest_lasertest.nav.laser_filters.scan_filters import ShadowDetector, ShadowsFilter
 from pytest_lasertest.nav.protocol import LaserScan
@@ -26,7 +27,7 @@ SHADOWS = Source(
 )
 NAN = float("nan")
 # The range-5 points stand for a nearby object, the range-9 points for a wall.
-OBJECT_THEN_WALL = [5, 5, 5, 5, 5, 9, 9, 9, 9, 9]
+OBJECT_THEN_WALL = [5.0, 5.0, 5.0, 5.0, 5.0, 9.0, 9.0, 9.0, 9.0, 9.0]
 
 
 def shadows(
@@ -37,7 +38,7 @@ def shadows(
     return ShadowsFilter(detector, window, neighbors, remove)
 
 
-def create_message(ranges: list[float]) -> LaserScan:
+def create_message(ranges: Sequence[float]) -> LaserScan:
     return message(ranges, -math.pi / 12, math.pi / 12, 0.1, 10.0)
 
 

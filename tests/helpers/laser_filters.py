@@ -9,6 +9,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+import numpy.typing as npt
 
 from pytest_lasertest.inputs.errors import Location
 from pytest_lasertest.inputs.node import SpecNode
@@ -79,12 +80,12 @@ def stepped(start: float, stop: float, step: float) -> list[float]:
 
 def pure_shadow(
     first: FloatArray, second: FloatArray, angle: float, min_angle: float, max_angle: float
-) -> FloatArray:
+) -> npt.NDArray[np.bool_]:
     """isShadowPureImpl: the line's angle (degrees) outside [min_angle, max_angle]."""
     seen = np.abs(
         np.degrees(np.arctan2(second * math.sin(angle), first - second * math.cos(angle)))
     )
-    result: FloatArray = (seen < min_angle) | (seen > max_angle)
+    result: npt.NDArray[np.bool_] = (seen < min_angle) | (seen > max_angle)
     return result
 
 
