@@ -192,31 +192,32 @@ def _ros2_filters(group: Group, types: Mapping[str, FilterType[T]], ros: Ros) ->
     """Each filter of a ROS 2 chain, filter1, filter2, ... until the first missing one
     (filter_chain.hpp:62-165 at ros/filters ros2 e33463ae), by its name's node."""
     made: list[Made[T]] = []
-    number = 1
-    while f"filter{number}" in group.members:
-        entry = _as_group(group.members[f"filter{number}"], f"filter{number}")
-        fields = {key: entry.members[key] for key in _FILTER_FIELDS if key in entry.members}
-        _check_keys(entry, _FILTER_FIELDS, "a filter's name, type and params")
-        for key in ("name", "type"):
-            if key not in fields:
-                raise entry.node.missing(
-                    key, f"write filter{number}.name and filter{number}.type, both required"
-                )
-        name, kind = _as_value(fields["name"], "name"), _as_value(fields["type"], "type")
-        params = _as_group(fields["params"], "params").members if "params" in fields else {}
-        made.append(_filter(ros, name, kind, params, entry.node, types))
-        number += 1
+    while f"filter{len(made) + 1}" in group.members:
+        key = f"filter{len(made) + 1}"
+        made.append(_ros2_filter(_as_group(group.members[key], key), key, types, ros))
     for key, member in group.members.items():
         match = _FILTER_KEY.match(key)
-        if match and int(match[1]) >= number:
+        if match and int(match[1]) > len(made):
             raise _node_of(member).error(
-                f"{key} follows no filter{number}: ROS 2's chain stops at the first filterN it "
-                "does not find (filter_chain.hpp:73-106 at ros/filters ros2 e33463ae), so "
-                f"{key} never runs",
+                f"{key} follows no filter{len(made) + 1}: ROS 2's chain stops at the first "
+                "filterN it does not find (filter_chain.hpp:73-106 at ros/filters ros2 "
+                f"e33463ae), so {key} never runs",
                 "number the filters filter1, filter2, ... without a gap",
             )
     _check_names(ros, [filter.name for filter in made])
     return made
+
+
+def _ros2_filter(entry: Group, key: str, types: Mapping[str, FilterType[T]], ros: Ros) -> Made[T]:
+    """One `filterN` of a ROS 2 chain: its name, type and params."""
+    _check_keys(entry, _FILTER_FIELDS, "a filter's name, type and params")
+    fields = {field: entry.members[field] for field in _FILTER_FIELDS if field in entry.members}
+    for field in ("name", "type"):
+        if field not in fields:
+            raise entry.node.missing(field, f"write {key}.name and {key}.type, both required")
+    name, kind = _as_value(fields["name"], "name"), _as_value(fields["type"], "type")
+    params = _as_group(fields["params"], "params").members if "params" in fields else {}
+    return _filter(ros, name, kind, params, entry.node, types)
 
 
 def _named(made: list[Made[ScanFilter]], where: SpecNode) -> tuple[NamedFilter, ...]:
@@ -251,11 +252,27 @@ def _filter(
         fix="write e.g. laser_filters/LaserScanRangeFilter",
     )
     spec = _spec(ros, kind, text, types)
+    values = _values(ros, _short(text), spec, params, where)
+    try:
+        return Made(name, text, types[text].build(ros, values))
+    except FilterProblem as problem:
+        raise _located(problem, params, spec, where) from None
+
+
+def _values(
+    ros: Ros,
+    short: str,
+    spec: Mapping[str, Param],
+    params: Mapping[str, SpecNode | Group],
+    where: SpecNode,
+) -> dict[str, Value]:
+    """Each parameter the filter reads: as the file sets it, else at its ROS's default; one the
+    filter does not read, or one it cannot do without, is an error."""
     values: dict[str, Value] = {}
     for key, value in params.items():
         if key not in spec:
             raise _node_of(value).error(
-                f"{_short(text)} reads no parameter {key!r}: {ROS_NAMES[ros]} ignores it",
+                f"{short} reads no parameter {key!r}: {ROS_NAMES[ros]} ignores it",
                 suggest_key(key, spec, {}),
             )
         values[key] = _typed(ros, key, spec[key], value)
@@ -270,10 +287,7 @@ def _filter(
                 f"write {key} in the filter's params",
             )
         values[key] = param.default
-    try:
-        return Made(name, text, types[text].build(ros, values))
-    except FilterProblem as problem:
-        raise _located(problem, params, spec, where) from None
+    return values
 
 
 def _spec(

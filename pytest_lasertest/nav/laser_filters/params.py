@@ -14,6 +14,7 @@ that, say, a range filter without upper_threshold replaces every reading.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Generic, Literal, TypeVar
@@ -233,7 +234,7 @@ def _angles(lines: str) -> Params:
 
 def _bounds(values: Mapping[str, Value], effect: str) -> tuple[float, float]:
     for name in ("lower_angle", "upper_angle"):
-        if abs(_number(values, name)) > 2 * 3.141592653589793:
+        if abs(_number(values, name)) > 2 * math.pi:
             raise FilterProblem(
                 (name,),
                 f"{name} {_number(values, name):g} rad is beyond a full turn",
@@ -327,32 +328,38 @@ _SPECKLE: Params = {
 def _speckle(ros: Ros, values: Mapping[str, Value]) -> SpeckleFilter:
     kind = _whole(values, "filter_type")
     if kind not in (0, 1):
+        crash = ": the filter has no validator, and its first update crashes the node"
         raise FilterProblem(
             ("filter_type",),
-            f"filter_type {kind} is neither 0 (distance) nor 1 (radius outlier): the filter "
-            "has no validator and its first update crashes the node",
+            f"filter_type {kind} is neither 0 (distance) nor 1 (radius outlier)"
+            + (crash if ros == "ros2" else ""),
             "write filter_type: 0 or 1",
         )
     window = _span(values, "filter_window", 1, "marks no reading valid: every one becomes NaN")
-    if _number(values, "max_range") <= 0:
+    # ROS 1 picks its validator in the dynamic_reconfigure callback, which runs before the
+    # filter reads its params (speckle_filter.cpp:63-69 at noetic-devel): filter_type from the
+    # chain's params never takes effect, and the filter runs the default, distance (0).
+    used = 0 if ros == "ros1" else kind
+    return SpeckleFilter(ros, used, *_speckle_distances(values), window)
+
+
+def _speckle_distances(values: Mapping[str, Value]) -> tuple[float, float]:
+    """max_range and max_range_difference (m), each of a use."""
+    reach, difference = _number(values, "max_range"), _number(values, "max_range_difference")
+    if reach <= 0:
         raise FilterProblem(
             ("max_range",),
-            f"max_range {_number(values, 'max_range'):g} m: every reading lies beyond it and "
-            "stays, so the filter removes nothing",
+            f"max_range {reach:g} m: every reading lies beyond it and stays, so the filter "
+            "removes nothing",
             "write the range (m) within which speckles are looked for, e.g. 2.0",
         )
-    difference = _number(values, "max_range_difference")
     if difference < 0:
         raise FilterProblem(
             ("max_range_difference",),
             f"max_range_difference {difference:g} m is below zero: no two readings agree",
             "write a distance (m) of zero or more, e.g. 0.1",
         )
-    # ROS 1 picks its validator in the dynamic_reconfigure callback, which runs before the
-    # filter reads its params (speckle_filter.cpp:63-69 at noetic-devel): filter_type from the
-    # chain's params never takes effect, and the filter runs the default, distance (0).
-    used = 0 if ros == "ros1" else kind
-    return SpeckleFilter(ros, used, _number(values, "max_range"), difference, window)
+    return reach, difference
 
 
 # ScanShadowsFilter: ROS 1 refuses to configure without the angles and window
@@ -378,17 +385,7 @@ _SHADOWS: Params = {
 
 
 def _shadows(ros: Ros, values: Mapping[str, Value]) -> ShadowsFilter:
-    for name, low, high in (("min_angle", 0.0, 90.0), ("max_angle", 90.0, 180.0)):
-        angle = _number(values, name)
-        if not low <= angle <= high:
-            forced = low if angle < low else high
-            raise FilterProblem(
-                (name,),
-                f"{name} {angle:g}° is outside {low:g}-{high:g}°: laser_filters logs an error "
-                f"and forces it to {forced:g}° (scan_shadows_filter.cpp:78-97 at {ROS1}; "
-                f"scan_shadows_filter.h:96-115 at {ROS2})",
-                f"write {name} from {low:g} to {high:g} (degrees)",
-            )
+    detector = ShadowDetector(*(math.radians(angle) for angle in _shadow_angles(values)))
     window = _span(values, "window", 1, "compares no readings: the filter removes nothing")
     neighbors = _span(values, "neighbors", 0, "is below zero: the filter removes nothing")
     remove = ros == "ros1" and _flag(values, "remove_shadow_start_point")
@@ -400,9 +397,23 @@ def _shadows(ros: Ros, values: Mapping[str, Value]) -> ShadowsFilter:
             "write neighbors: 1 or more"
             + (", or remove_shadow_start_point: true" if ros == "ros1" else ""),
         )
-    angles = (_number(values, "min_angle"), _number(values, "max_angle"))
-    detector = ShadowDetector(*(angle * 3.141592653589793 / 180.0 for angle in angles))
     return ShadowsFilter(detector, window, neighbors, remove)
+
+
+def _shadow_angles(values: Mapping[str, Value]) -> tuple[float, float]:
+    """min_angle and max_angle (degrees), where laser_filters keeps them."""
+    for name, low, high in (("min_angle", 0.0, 90.0), ("max_angle", 90.0, 180.0)):
+        angle = _number(values, name)
+        if not low <= angle <= high:
+            forced = low if angle < low else high
+            raise FilterProblem(
+                (name,),
+                f"{name} {angle:g}° is outside {low:g}-{high:g}°: laser_filters logs an error "
+                f"and forces it to {forced:g}° (scan_shadows_filter.cpp:78-97 at {ROS1}; "
+                f"scan_shadows_filter.h:96-115 at {ROS2})",
+                f"write {name} from {low:g} to {high:g} (degrees)",
+            )
+    return _number(values, "min_angle"), _number(values, "max_angle")
 
 
 _NONE: Params = {"ros1": {}, "ros2": {}}
