@@ -379,6 +379,14 @@ ROS2_CASES = {
         "ScanShadowsFilter reads no parameter 'remove_shadow_start_point': ROS 2 ignores it",
         "known keys here",
     ),
+    "a window no scan is worth": Case(
+        "window: 1,",
+        "window: 500,",
+        15,
+        f"{NODE}.filter2.params.window",
+        "window 500 is above 100, the most the gate runs",
+        "write window from 1 to 100",
+    ),
     "a gap in the filters' numbers": Case(
         "    filter3:",
         "    filter5:",

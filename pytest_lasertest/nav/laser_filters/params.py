@@ -70,9 +70,10 @@ _ZERO: dict[Kind, tuple[Value, str]] = {
     "string": ("", "filter_base.hpp:160-164"),
     "chain": ((), "filter_chain.hpp:104-106, a chain of no filters"),
 }
-# The most a window, a neighbourhood or a filter's memory may span: each beam of it is one
-# pass over the scan, every scan.
-MAX_SPAN = 1000
+# The most a window, a neighbourhood or a filter's memory may span: each beam or scan of it is a
+# pass over every scan, and ROS 1's dynamic_reconfigure bounds window, neighbors and
+# filter_window at 100 too (cfg/ScanShadowsFilter.cfg:45-46, cfg/SpeckleFilter.cfg:52).
+MAX_SPAN = 100
 
 
 class FilterProblem(Exception):
@@ -172,7 +173,7 @@ def _span(values: Mapping[str, Value], name: str, least: int, why: str) -> int:
         raise FilterProblem(
             (name,),
             f"{name} {value} is above {MAX_SPAN}, the most the gate runs: each one is a pass "
-            "over every scan",
+            "over every scan, and ROS 1's dynamic_reconfigure allows no more",
             f"write {name} from {least} to {MAX_SPAN}",
         )
     return value

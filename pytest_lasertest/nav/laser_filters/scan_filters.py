@@ -305,16 +305,21 @@ class ShadowsFilter:
         ranges, count = scan.ranges, len(scan.ranges)
         shadow = np.zeros(count, dtype=bool)
         for offset in (y for y in range(-self.window, self.window + 1) if y != 0):
-            index = np.arange(count) + offset
-            other = ranges[np.clip(index, 0, max(count - 1, 0))]
-            found = self.detector.is_shadow_at(ranges, other, offset * scan.meta.angle_increment)
-            shadow |= found & (index >= 0) & (index < count)
+            here, there = _shifted(count, offset)
+            angle = offset * scan.meta.angle_increment
+            shadow[here] |= self.detector.is_shadow_at(ranges[here], ranges[there], angle)
+        if not shadow.any():
+            return scan
         deleted = shadow & self.remove_shadow_start_point
-        for offset in range(-self.neighbors, self.neighbors + 1):
-            index = np.arange(count) + offset
-            inside = (index >= 0) & (index < count)
-            neighbour = ranges[np.clip(index, 0, max(count - 1, 0))]
-            with np.errstate(invalid="ignore"):
-                farther = shadow & inside & (ranges < neighbour)
-            deleted[index[farther]] = True
+        with np.errstate(invalid="ignore"):
+            for offset in range(-self.neighbors, self.neighbors + 1):
+                here, there = _shifted(count, offset)
+                deleted[there] |= shadow[here] & (ranges[here] < ranges[there])
         return replaced(scan, np.where(deleted, np.nan, ranges))
+
+
+def _shifted(count: int, offset: int) -> tuple[slice, slice]:
+    """The readings i, and i + offset, of a scan of `count`, where both lie in the scan."""
+    if offset >= 0:
+        return slice(0, max(count - offset, 0)), slice(offset, count)
+    return slice(-offset, count), slice(0, max(count + offset, 0))
