@@ -4,8 +4,9 @@ It is the user's own pairs file cut down to the failing case: the robot, world, 
 navigation sections and the pair's two scanners are copied as written (so `model:` overrides read
 as the user wrote them), and the placement is pinned. A scanner read from a robot description is
 written out as the profile it read: its file moves on, and its `ref:` (a branch) moves too.
-Paths to files beside the pairs file (the robot's, the world's `map:` and `sdf:`) are rewritten
-to be found from wherever the repro is written.
+Paths to files beside the pairs file (the robot's, the world's `map:` and `sdf:`, and the Nav2
+and laser_filters params files `navigation:` names) are rewritten to be found from wherever the
+repro is written.
 Committed, the repro replays the failure as a regression test on every run.
 """
 
@@ -32,9 +33,11 @@ from pytest_lasertest.pairsfile.scanners import Scanner
 
 # Settings and constraints only steer the solver, which a pinned placement never asks.
 COPIED_SECTIONS = ("robot", "world", "controller", "navigation")
-# The world's fields that name files, relative to the pairs file; and a robot's written in place.
+# The world's fields that name files, relative to the pairs file; a robot's written in place;
+# and `navigation:`'s (a Nav2 params file, a laser_filters params file).
 WORLD_FILES = ("map", "sdf")
 ROBOT_FILES = ("navigation", "nav2")
+NAVIGATION_FILES = ("nav2", "scan_filters")
 
 
 class _ReproDumper(yaml.SafeDumper):
@@ -64,6 +67,10 @@ def repro_yaml(
     )
     if "world" in document:
         document["world"] = _world_from(document["world"], spec.path, destination)
+    navigation = document.get("navigation")
+    if isinstance(navigation, dict):
+        relocated = _files_relocated(navigation, NAVIGATION_FILES, spec.path, destination)
+        document["navigation"] = relocated
     document["pairs"] = {pair.name: _pair_mapping(written, pair, pinned)}
     notes = [
         *header,

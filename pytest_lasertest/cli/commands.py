@@ -18,7 +18,8 @@ from pytest_lasertest.model.plan import AVOID, PairPlan, Witness
 from pytest_lasertest.model.verify import Scene
 from pytest_lasertest.pairsfile import Pair, PairsFile, load_pairs_file
 from pytest_lasertest.pairsfile.catalogue import load_catalogue
-from pytest_lasertest.pairsfile.controller import default_controller
+from pytest_lasertest.pairsfile.controller import ControllerChoice, default_controller
+from pytest_lasertest.pairsfile.scan_filters import with_scan_filters
 from pytest_lasertest.pairsfile.schema import SHIPPED, schema_text
 from pytest_lasertest.reports.catalogue import ModelFigures, catalogue_table
 from pytest_lasertest.reports.formats import json_text
@@ -166,12 +167,17 @@ def _setting(spec: PairsFile, pair: Pair, seed: int) -> Iterator[Setting]:
     from pytest_lasertest.search.trials import Setting
     from pytest_lasertest.sim.client import PhysicsClient
 
-    controller = spec.controller or default_controller(spec.path)
+    controller = _controller(spec)
     client = PhysicsClient()
     try:
         yield Setting(spec, pair, controller, seed, client, RunCache())
     finally:
         client.close()
+
+
+def _controller(spec: PairsFile) -> ControllerChoice:
+    """The pairs file's controller, else the default, behind the file's scan filter chain."""
+    return with_scan_filters(spec.controller or default_controller(spec.path), spec.scan_filters)
 
 
 def print_profile(args: argparse.Namespace) -> int:
@@ -267,7 +273,7 @@ def _control_run(spec: PairsFile, pair: Pair, client: PhysicsClient | None = Non
     from pytest_lasertest.search.drives import drive
     from pytest_lasertest.sim.scenario import ControllerError
 
-    controller = spec.controller or default_controller(spec.path)
+    controller = _controller(spec)
     try:
         return drive(spec, pair.baseline.profile, (), 0, controller.factory, client)
     except ControllerError as error:

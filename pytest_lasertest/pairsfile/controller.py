@@ -25,6 +25,7 @@ from typing import cast
 
 from pytest_lasertest.inputs.errors import Location, SpecError, display_path
 from pytest_lasertest.inputs.node import SpecNode
+from pytest_lasertest.nav.laser_filters import ScanFilterChain
 from pytest_lasertest.nav.protocol import ControllerFactory
 
 # The controller of a pairs file that names none (and whose conftest hooks choose none).
@@ -46,6 +47,9 @@ class ControllerChoice:
     source: str  # for reports: where the choice was made
     factory: ControllerFactory
     stack: str = ""  # for reports: what the stack runs, where we know (Nav2's release, say)
+    # The laser_filters chain in front of each controller `factory` makes, if the pairs file
+    # names one (pairsfile/scan_filters.py): part of what a run is, as the runs cache keys it.
+    scan_filters: ScanFilterChain | None = None
 
 
 def read_controller(node: SpecNode) -> ControllerChoice:

@@ -70,7 +70,7 @@ def load_nav2_file(node: SpecNode, release: str) -> tuple[Parameter, ...]:
         path, what="Nav2 params file", needs="nodes with ros__parameters", ros_params=True
     )
     where: dict[tuple[str, str], SpecNode] = {}
-    for name, node_parameters in _nodes(root):
+    for name, node_parameters in ros2_nodes(root):
         for key, value in _flattened(node_parameters, "").items():
             where[(name, key)] = value
     parameters = tuple((name, key, _value(value)) for (name, key), value in where.items())
@@ -81,7 +81,7 @@ def load_nav2_file(node: SpecNode, release: str) -> tuple[Parameter, ...]:
     return parameters
 
 
-def _nodes(root: SpecNode) -> list[tuple[str, SpecNode]]:
+def ros2_nodes(root: SpecNode) -> list[tuple[str, SpecNode]]:
     """Each node's `ros__parameters`, by the node's name, its namespace dropped, as rcl's
     parser joins the keys above them (`robot1: {controller_server: ...}`, or
     `/robot1/controller_server:`; rcl_yaml_param_parser/src/parse.c parse_key at ros2/rcl

@@ -2,13 +2,14 @@
 
 Both are written the same way, one mapping per section of `pytest_lasertest.nav.move_base.settings`,
 with ROS's parameter names; a pairs file's may also name a Nav2 params file and release
-(`nav2_params.py`):
+(`nav2_params.py`) and a laser_filters params file (`scan_filters.py`):
 
     navigation:
       move_base: {back_up_recovery: true}
       dwa: {min_vel_x: -0.1}
       nav2: nav2_params.yaml
       nav2_version: jazzy
+      scan_filters: laser_filters.yaml
 """
 
 from __future__ import annotations
@@ -45,15 +46,18 @@ MUST_BE_POSITIVE = frozenset(
 )
 
 
-def read_navigation(node: SpecNode, under: tuple[Parameter, ...] = ()) -> tuple[Parameter, ...]:
+def read_navigation(
+    node: SpecNode, under: tuple[Parameter, ...] = (), elsewhere: tuple[str, ...] = NAV2_KEYS
+) -> tuple[Parameter, ...]:
     """The parameters a `navigation:` mapping sets, each checked against its section and its
-    limits, and all of them, set over `under` (the robot's), checked together."""
+    limits, and all of them, set over `under` (the robot's), checked together. The keys
+    `elsewhere` (Nav2's, and a pairs file's scan_filters) are accepted and read by others."""
     types = parameter_types()
-    sections = node.mapping((*types, *NAV2_KEYS), what="navigation sections")
+    sections = node.mapping((*types, *elsewhere), what="navigation sections")
     read: list[tuple[Parameter, SpecNode]] = []
     for section, values in sections.items():
-        if section in NAV2_KEYS:
-            continue  # Nav2's, read by read_nav2
+        if section in elsewhere:
+            continue  # read by read_nav2, or read_scan_filters
         known = types[section]
         for name, value in values.mapping(known, what=f"{section} parameters").items():
             read.append(((section, name, _value(value, known[name], section)), value))

@@ -15,15 +15,17 @@ from pytest_lasertest.inputs.profile import build_profile
 from pytest_lasertest.model.geometry import Pose3D
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import nominal_path
+from pytest_lasertest.nav.laser_filters import ScanFilterChain
 from pytest_lasertest.pairsfile.catalogue import Catalogue, load_catalogue
 from pytest_lasertest.pairsfile.constraints import Constraint, read_constraints
 from pytest_lasertest.pairsfile.controller import ControllerChoice, read_controller
 from pytest_lasertest.pairsfile.described import DESCRIPTION_KEYS, is_described, read_described
-from pytest_lasertest.pairsfile.nav2_params import read_nav2
+from pytest_lasertest.pairsfile.nav2_params import NAV2_KEYS, read_nav2
 from pytest_lasertest.pairsfile.navigation import read_navigation
 from pytest_lasertest.pairsfile.placements import PinnedPlacement, read_placements
 from pytest_lasertest.pairsfile.recorded import read_recorded
 from pytest_lasertest.pairsfile.robot import read_robot
+from pytest_lasertest.pairsfile.scan_filters import SCAN_FILTERS, read_scan_filters
 from pytest_lasertest.pairsfile.scanners import PROFILE_KEYS, Scanner, read_fields
 from pytest_lasertest.pairsfile.world import World, read_world
 
@@ -99,6 +101,8 @@ class PairsFile:
     controller: ControllerChoice | None = None
     # The move_base parameters its own `navigation:` sets (over the robot's).
     move_base_overrides: tuple[tuple[str, str, float | bool], ...] = ()
+    # The laser_filters chain its `navigation: {scan_filters: FILE}` runs in front of the stack.
+    scan_filters: ScanFilterChain | None = None
 
 
 def load_pairs_file(path: Path) -> PairsFile:
@@ -116,11 +120,16 @@ def load_pairs_file(path: Path) -> PairsFile:
             )
     robot = read_robot(sections["robot"])
     overrides: tuple[tuple[str, str, float | bool], ...] = ()
+    scan_filters: ScanFilterChain | None = None
     if "navigation" in sections:
+        navigation = sections["navigation"]
         # The file's own parameters come after the robot's, and so win.
-        overrides = read_navigation(sections["navigation"], robot.navigation)
+        overrides = read_navigation(navigation, robot.navigation, (*NAV2_KEYS, SCAN_FILTERS))
         robot = dataclasses.replace(robot, navigation=robot.navigation + overrides)
-        robot = read_nav2(sections["navigation"].entries(what="navigation sections"), robot)
+        fields = navigation.entries(what="navigation sections")
+        robot = read_nav2(fields, robot)
+        if SCAN_FILTERS in fields:
+            scan_filters = read_scan_filters(fields[SCAN_FILTERS])
     world = read_world(sections["world"], robot)
     pairs = _read_pairs(sections["pairs"], load_catalogue(), robot.laser_mount)
     _check_scans(sections["pairs"], pairs, scanned_time(world, robot))
@@ -133,6 +142,7 @@ def load_pairs_file(path: Path) -> PairsFile:
         constraints=read_constraints(sections["constraints"]) if "constraints" in sections else (),
         controller=read_controller(sections["controller"]) if "controller" in sections else None,
         move_base_overrides=overrides,
+        scan_filters=scan_filters,
     )
 
 

@@ -26,6 +26,7 @@ from pytest_lasertest.pairsfile.controller import (
     checked_factory,
     default_controller,
 )
+from pytest_lasertest.pairsfile.scan_filters import with_scan_filters
 from pytest_lasertest.plugin.items.control import ControlItem
 from pytest_lasertest.plugin.items.coverage import CoverageItem
 from pytest_lasertest.plugin.items.pinned import pinned_items
@@ -56,6 +57,8 @@ class PairFile(pytest.File):
         unread: tuple[str, ...] = ()
         if controller.name == "nav2":
             controller, unread = self._nav2(spec, controller)
+        # The team's laser_filters chain stands in front of whichever stack drives.
+        controller = with_scan_filters(controller, spec.scan_filters)
         items = self._items(spec, controller)
         if items and unread:  # a file that yields no items drives no Nav2: nothing to warn of
             self._note_unread(spec, unread)

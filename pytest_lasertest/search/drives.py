@@ -27,11 +27,16 @@ from pytest_lasertest.model.policy import (
     fails,
 )
 from pytest_lasertest.model.sensor import LaserProfile
+from pytest_lasertest.nav.laser_filters import ScanFilterChain
 from pytest_lasertest.nav.protocol import ControllerFactory
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Run, Scenario, run_scenario
+
+# What a run is known by: the controller's name and where it was chosen, the scan filter chain
+# in front of it, and the scenario.
+_Key = tuple[str, str, ScanFilterChain | None, Scenario]
 
 
 @dataclass(frozen=True, eq=False)
@@ -112,7 +117,7 @@ class RunCache:
 
     def __init__(self, size: int = 256) -> None:
         self.size = size
-        self._runs: OrderedDict[tuple[str, str, Scenario], Run] = OrderedDict()
+        self._runs: OrderedDict[_Key, Run] = OrderedDict()
 
     def knows(self, scenario: Scenario, controller: ControllerChoice) -> bool:
         """Whether the scenario's run with this controller is kept."""
@@ -131,9 +136,10 @@ class RunCache:
         return run
 
 
-def _key(scenario: Scenario, controller: ControllerChoice) -> tuple[str, str, Scenario]:
+def _key(scenario: Scenario, controller: ControllerChoice) -> _Key:
     # The name alone could be two modules' of one name; where it was chosen tells them apart.
-    return controller.name, controller.source, scenario
+    # One controller behind two pairs files' scan filter chains drives two robots.
+    return controller.name, controller.source, controller.scan_filters, scenario
 
 
 def drive_pair(

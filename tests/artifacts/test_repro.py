@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+import shutil
 import sys
 import uuid
 from collections.abc import Iterator
@@ -513,3 +514,23 @@ def test_a_body_read_from_the_description_replays_as_read_after_the_description_
     # It rolls on the wheels it rolled on.
     assert [c.get("wheel", False) for c in body["collisions"]] == [False, True, True]
     assert schema_errors(destination.read_text()) == []  # an editor opens it without a complaint
+
+
+def test_the_params_files_navigation_names_are_found_from_a_repro_in_another_directory(
+    tmp_path: Path,
+) -> None:
+    # The chain and the Nav2 file are the pairs file's, found from wherever the repro goes.
+    project = tmp_path / "project"
+    chain = "scan_filter_chain:\n- {name: r, type: laser_filters/LaserScanRangeFilter}\n"
+    write(project / "config", chain, "filters.yaml")
+    shutil.copy(EXAMPLES / "nav2" / "cropped.nav2.yaml", project / "config" / "nav2.yaml")
+    navigation = "navigation:\n  scan_filters: config/filters.yaml\n  nav2: config/nav2.yaml\n"
+    original = load_pairs_file(write(project, navigation + VALID_PAIRS))
+    assert original.scan_filters is not None
+    pinned = pinned_for(pair_named(original, "same"))
+    destination = tmp_path / "artifacts" / "gate" / "same.lasertest.yaml"
+    replayed = replay(original, "same", pinned, destination)
+    assert replayed.scan_filters is not None
+    assert replayed.scan_filters.path == original.scan_filters.path
+    assert replayed.scan_filters.filters == original.scan_filters.filters
+    assert replayed.robot.nav2 == original.robot.nav2

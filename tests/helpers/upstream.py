@@ -27,10 +27,13 @@ from typing import Literal
 
 import pytest
 
-# The upstream commits ported from (the navigation2 branches' commits that our imitations cite).
+# The upstream commits ported from (the branches' commits that our imitations cite).
 NAVIGATION2_JAZZY = ("ros-navigation/navigation2", "f4108e5b")
 NAVIGATION2_HUMBLE = ("ros-navigation/navigation2", "3c3db59d")
 NAVIGATION_NOETIC = ("ros-planning/navigation", "9ad64419")
+# laser_filters' ros2 branch (ROS 2) and noetic-devel (ROS 1), as nav/laser_filters cites them.
+LASER_FILTERS_ROS2 = ("ros-perception/laser_filters", "905f5e9a")
+LASER_FILTERS_NOETIC = ("ros-perception/laser_filters", "75913d51")
 
 Verdict = Literal["reproduced", "differs", "failed"]
 

@@ -481,3 +481,27 @@ pairs:
         "put waypoints closer together along the route",
     )
     assert_one_clean_error(result, 5, "world.route", expected)
+
+
+def test_a_broken_scan_filters_file_is_one_collection_error_at_its_own_line(
+    pytester: pytest.Pytester,
+) -> None:
+    # The chain is read at collection: its error names the params file, not the pairs file.
+    (pytester.path / "filters.yaml").write_text(
+        "scan_filter_chain:\n"
+        "- name: range\n"
+        "  type: laser_filters/LaserScanRangeFilter\n"
+        "  params: {lower_treshold: 0.3}\n"
+    )
+    pairs = GOOD_PAIRS + "navigation: {scan_filters: filters.yaml}\n"
+    (pytester.path / "gate.lasertest.yaml").write_text(pairs)
+    result = pytester.runpytest()
+    misspelt = Case(
+        "",
+        "",
+        4,
+        "scan_filter_chain[0].params.lower_treshold",
+        "LaserScanRangeFilter reads no parameter 'lower_treshold': ROS 1 ignores it",
+        "did you mean 'lower_threshold'?",
+    )
+    assert_one_clean_error(result, 4, misspelt.field, misspelt, file="filters.yaml")

@@ -257,3 +257,21 @@ def test_a_registered_controller_that_raises_on_import_is_a_collection_error(
         "fix or reinstall the package that registers it (team-controllers)",
     )
     assert_one_clean_error(result, CONTROLLER_LINE, "controller", error)
+
+
+def test_the_items_of_a_pairs_file_with_scan_filters_drive_behind_its_chain(
+    pytester: pytest.Pytester,
+) -> None:
+    (pytester.path / "filters.yaml").write_text(
+        "scan_filter_chain:\n- {name: range, type: laser_filters/LaserScanRangeFilter}\n"
+    )
+    pairs = GOOD_PAIRS + "controller: move_base\nnavigation: {scan_filters: filters.yaml}\n"
+    (pytester.path / "gate.lasertest.yaml").write_text(pairs)
+    items, _ = pytester.inline_genitems("gate.lasertest.yaml")
+    driving = [item for item in items if hasattr(item, "controller")]
+    assert driving  # the control item and the placement items
+    for item in driving:
+        controller = getattr(item, "controller")  # noqa: B009  (the item's own)
+        assert controller.name == "move_base"
+        assert controller.stack == "scan filters: filters.yaml (1 filter)"
+        assert controller.scan_filters is not None

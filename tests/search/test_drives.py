@@ -3,6 +3,7 @@ memory stays bounded."""
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -10,11 +11,17 @@ import pytest
 from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.pairsfile.controller import ControllerChoice
+from pytest_lasertest.pairsfile.scan_filters import with_scan_filters
 from pytest_lasertest.search import drives
 from pytest_lasertest.search.drives import RunCache, scenario
 from tests.helpers import EXAMPLES
+from tests.helpers.laser_filters import chain_of
 
 SPEC = load_pairs_file(EXAMPLES / "paper.lasertest.yaml")
+RANGE = """\
+scan_filter_chain:
+- {{name: r, type: laser_filters/LaserScanRangeFilter, params: {{lower_threshold: {lower}}}}}
+"""
 PROFILE = SPEC.pairs[0].baseline.profile
 REACTIVE = ControllerChoice("reactive", "the default", ReactiveController)
 
@@ -48,6 +55,22 @@ def test_another_seed_or_controller_is_another_scenario(simulated: list[object])
     other = ControllerChoice("reactive", "from other.lasertest.yaml:3", ReactiveController)
     cache.run(scenario(SPEC, PROFILE, (), seed=1), other, None)
     assert len(simulated) == 3
+
+
+def test_one_controller_behind_two_scan_filter_chains_drives_two_scenarios(
+    simulated: list[object], tmp_path: Path
+) -> None:
+    # Two pairs files of one robot and world, each with its own chain, share the session's
+    # cache: the chain is part of what a run is.
+    chains = []
+    for name, lower in (("near", 0.1), ("far", 0.3)):
+        (tmp_path / name).mkdir()
+        chains.append(chain_of(tmp_path / name, RANGE.format(lower=lower)))
+    cache, world = RunCache(), scenario(SPEC, PROFILE, (), seed=1)
+    for chain in chains:
+        cache.run(world, with_scan_filters(REACTIVE, chain), None)
+    cache.run(world, with_scan_filters(REACTIVE, chains[0]), None)
+    assert len(simulated) == 2
 
 
 def test_the_least_recently_used_run_is_dropped_beyond_the_size(simulated: list[object]) -> None:

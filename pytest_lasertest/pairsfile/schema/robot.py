@@ -11,6 +11,7 @@ from pytest_lasertest.pairsfile import body, robot
 from pytest_lasertest.pairsfile.bundled import bundled_robots
 from pytest_lasertest.pairsfile.nav2_params import NAV2_KEYS
 from pytest_lasertest.pairsfile.navigation import MAY_BE_NEGATIVE, MUST_BE_POSITIVE
+from pytest_lasertest.pairsfile.scan_filters import SCAN_FILTERS
 from pytest_lasertest.pairsfile.schema.scanner import description_terms
 from pytest_lasertest.pairsfile.schema.terms import (
     Schema,
@@ -166,7 +167,8 @@ def _nav2_terms() -> dict[str, Schema]:
 
 
 def navigation() -> Schema:
-    """`navigation:`: move_base parameters by section, and a Nav2 params file and release."""
+    """`navigation:`: move_base parameters by section, a Nav2 params file and release, and a
+    laser_filters params file."""
     sections = {
         section: mapping(
             f"move_base's `{section}` parameters, by their ROS names, as the ROS 1 "
@@ -175,7 +177,12 @@ def navigation() -> Schema:
         )
         for section, parameters in parameter_types().items()
     }
-    return mapping("Navigation parameters set over the robot's.", {**sections, **_nav2_terms()})
+    scan_filters = text(
+        "A laser_filters params file (ROS 1 or ROS 2), relative to this file: its chain runs "
+        "on every scan before the stack"
+    )
+    terms = {**sections, **_nav2_terms(), SCAN_FILTERS: scan_filters}
+    return mapping("Navigation parameters set over the robot's.", terms)
 
 
 def _parameter(section: str, name: str, kind: type) -> Schema:
