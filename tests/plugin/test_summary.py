@@ -70,7 +70,9 @@ def test_a_pair_whose_scanners_read_alike_yields_no_items_and_one_summary_line(
 ) -> None:
     # An edit that changes nothing the laser reads: a comment and a new link.
     edited = ROBOT.replace(
-        "</robot>", "  <!-- a camera, soon -->\n  <link name='camera'/>\n</robot>"
+        "</robot>",
+        "  <!-- a camera, soon -->\n  <link name='camera'/>\n  <joint name='camera_joint' "
+        "type='fixed'><parent link='base_link'/><child link='camera'/></joint>\n</robot>",
     )
     (repository / "robot.urdf").write_text(edited)
     result = pytester.runpytest("--laser-seed=1")
