@@ -17,7 +17,8 @@ to run another checkout's code (a worktree of an older commit: its virtualenv's 
 one's with PYTHONPATH naming the worktree) with `--source` naming the worktree, whose examples
 and test data are then the ones run. `--results DIR` keeps each run's JUnit XML in DIR and reads
 a run found there instead of running it again: a sweep of all the examples under eight seeds
-takes hours on two cores, and may be resumed, or reported from DIR alone.
+takes hours on two cores, and may be resumed, or reported from DIR alone. A run is kept by its
+file and seed alone: give each sweep (each checkout, policy or -k) a DIR of its own.
 `--ci RUNS` runs each file RUNS times as a CI service does instead (`CI=true`, no `--laser-seed`
 or `--laser-profile`: each file's seed comes from its path, the profile is ci), to show that the
 same commit gives the same verdict: no item may change between the runs.
