@@ -11,8 +11,10 @@ constants and plain functions, each in the module of its kind.
 - `tests.helpers.sim`: what the simulator tests share;
 - `tests.helpers.upstream`: the upstream tests tests/conformance ports, and their table;
 - `tests.helpers.nav2_costmap`, `tests.helpers.ros1_costmap`, `tests.helpers.mppi`,
-  `tests.helpers.dwb`: the upstream test harnesses of Nav2's costmap, ROS 1's costmap_2d, MPPI
-  and DWB, rebuilt on ours.
+  `tests.helpers.dwb`, `tests.helpers.laser_filters`: the upstream test harnesses of Nav2's
+  costmap, ROS 1's costmap_2d, MPPI, DWB and laser_filters, rebuilt on ours;
+- `tests.helpers.nav2_params`: Nav2 params files as tests set them up, nav2_params.yaml with the
+  nodes a test is about replaced.
 
 No test module imports another test module or a conftest.py: what they share is here.
 """
