@@ -24,7 +24,7 @@ or `--laser-profile`: each file's seed comes from its path, the profile is ci), 
 same commit gives the same verdict: no item may change between the runs.
 
     python benchmarks/verdicts.py [FILE ...] [--seeds 0-7 | --ci RUNS] [--workers 2]
-                                  [--policy regression] [--pytest .venv/bin/pytest] [-k EXPRESSION]
+                                  [--policy regression] [--pytest PATH] [-k EXPRESSION]
                                   [--source CHECKOUT] [--results DIR]
 
 Without FILE, the harmless changes of tests/data/harmless/ (move_base and Nav2), which must
@@ -203,7 +203,8 @@ def main() -> None:
     parser.add_argument("--ci", type=int, default=0, metavar="RUNS", help="run as CI does")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--policy", default="regression")
-    parser.add_argument("--pytest", default=str(REPO / ".venv" / "bin" / "pytest"))
+    # The pytest of the Python running this: the environment the benchmark was started in.
+    parser.add_argument("--pytest", default=str(Path(sys.executable).with_name("pytest")))
     parser.add_argument("-k", dest="select", default=None, help="pytest's -k, to run fewer")
     parser.add_argument("--source", type=Path, default=REPO, help="the checkout whose files run")
     parser.add_argument("--results", type=Path, default=None, help="keep and reuse JUnit XML")

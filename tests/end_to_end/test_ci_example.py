@@ -83,7 +83,13 @@ def test_an_edit_that_changes_no_laser_field_collects_no_items_and_passes(
     pytester: pytest.Pytester, checkout: Path
 ) -> None:
     robot = checkout / "robot" / "robot.urdf.xacro"
-    robot.write_text(robot.read_text().replace("</robot>", "  <link name='camera'/>\n</robot>"))
+    # A new link, joined to the robot (a link no joint joins is a second root, which urdfdom
+    # refuses), that changes nothing the laser reads.
+    camera = (
+        "  <link name='camera'/>\n  <joint name='camera_joint' type='fixed'>"
+        "<parent link='base_link'/><child link='camera'/></joint>\n</robot>"
+    )
+    robot.write_text(robot.read_text().replace("</robot>", camera))
     result = pytester.runpytest_subprocess(*gate_command("ci/gate.lasertest.yaml"))
     assert result.ret == pytest.ExitCode.OK
     result.stdout.fnmatch_lines(["ci/gate.lasertest.yaml::front_laser: no sensing change, *"])

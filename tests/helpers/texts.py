@@ -25,7 +25,7 @@ VALID_PAIRS = """\
 robot: husky
 world:
   start: {x: 0.0, y: 0.0, yaw: 0.0}
-  goal: {x: 10.0, y: 0.0}
+  goal: {x: 9.0, y: 0.0}
   time_limit: 60.0
 settings:
   min_obstacle_size: 0.05

@@ -199,18 +199,18 @@ CASES = {
         "robot: husky\n", "", 1, "robot", "robot is missing", "a pairs file needs robot, world"
     ),
     "both goal and route": Case(
-        "  goal: {x: 10.0, y: 0.0}",
-        "  goal: {x: 10.0, y: 0.0}\n  route: [{x: 1, y: 1}]",
+        "  goal: {x: 9.0, y: 0.0}",
+        "  goal: {x: 9.0, y: 0.0}\n  route: [{x: 1, y: 1}]",
         5,
         "world.route",
         "both goal and route are given",
         "keep one",
     ),
     "no goal": Case(
-        "  goal: {x: 10.0, y: 0.0}\n", "", 2, "world.goal", "goal is missing", "goal: {x: 10.0"
+        "  goal: {x: 9.0, y: 0.0}\n", "", 2, "world.goal", "goal is missing", "goal: {x: 10.0"
     ),
     "a goal where the robot starts": Case(
-        "goal: {x: 10.0, y: 0.0}",
+        "goal: {x: 9.0, y: 0.0}",
         "goal: {x: 0.0, y: 0.0}",
         4,
         "world.goal",
