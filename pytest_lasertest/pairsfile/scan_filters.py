@@ -127,6 +127,15 @@ def with_scan_filters(choice: ControllerChoice, chain: ScanFilterChain | None) -
     return dataclasses.replace(choice, factory=factory, stack=stack, scan_filters=chain)
 
 
+def without_scan_filters(choice: ControllerChoice) -> ControllerChoice:
+    """The controller choice `with_scan_filters` made, with its chain taken out again."""
+    chain = choice.scan_filters
+    if chain is None or not isinstance(choice.factory, Filtered):
+        return choice
+    stack = choice.stack.removesuffix(chain.describe()).removesuffix(", ")
+    return dataclasses.replace(choice, factory=choice.factory.inner, stack=stack, scan_filters=None)
+
+
 def _ros1_chain(root: SpecNode) -> tuple[NamedFilter, ...]:
     fields = root.mapping((*ROS1_CHAINS, *NODE_PARAMETERS), what="the chain node's parameters")
     if all(key in fields for key in ROS1_CHAINS):

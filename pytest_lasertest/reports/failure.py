@@ -36,7 +36,7 @@ from pytest_lasertest.reports.drive import (
     run_properties,
 )
 from pytest_lasertest.reports.formats import Artifacts, Replay, pose_text, run_line, shell_word
-from pytest_lasertest.search.blame import TraitTried, blame_text
+from pytest_lasertest.search.blame import ChainTried, TraitTried, blame_text, chain_text
 from pytest_lasertest.search.offsets import AXES, OffsetBox
 from pytest_lasertest.search.trials import TrialResult, Trials
 
@@ -61,6 +61,8 @@ class PlacementFailure:
     unstored: str | None = None  # why Hypothesis's example database cannot keep the failure
     # The candidate again with each driver trait the pair differs in set to the baseline's.
     driver_tried: tuple[TraitTried, ...] = ()
+    # The candidate again with the pair's scan filter chain taken out, where it has one.
+    chain_tried: ChainTried | None = None
 
 
 @dataclass(frozen=True)
@@ -99,6 +101,7 @@ def failure_report(failure: PlacementFailure, replay: Replay, artifacts: Artifac
         run_line("candidate", pair.candidate.label, result.candidate),
         *(redrive_lines(result.drive) if result.drive is not None else []),
         *([f"  driver     {blame_text(failure.driver_tried)}"] if failure.driver_tried else []),
+        *([f"  filters    {chain_text(failure.chain_tried)}"] if failure.chain_tried else []),
         search_line(trials, failure.box),
         *(f"  hypothesis {note}" for note in failure.notes),
         f"  policy     {trials.policy}",

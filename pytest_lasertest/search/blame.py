@@ -1,9 +1,12 @@
-"""Which driver trait a failure comes from: the candidate driven again at the failing placement
-with one trait of its driver at a time set back to the baseline's.
+"""What a regression comes from: the candidate driven again at the failing placement with one
+part of the setup changed back.
 
 A pair whose scanners publish differently (model/driver.py) may fail through any trait in which
-they differ, and a reader fixes a driver one parameter at a time. One more run per differing
-trait, and only for the minimal failure, says which of them the failure needs.
+they differ, and a reader fixes a driver one parameter at a time: one more run per differing
+trait, with that trait set to the baseline's, says which of them the failure needs. A pair
+driving behind the team's laser_filters chain (pairsfile/scan_filters.py) may fail only because
+the chain was tuned for the old scanner: one more run with the chain taken out says whether the
+chain alone explains the failure. Both run only for the minimal failure of a regression.
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ from dataclasses import dataclass
 
 from pytest_lasertest.model.driver import differences
 from pytest_lasertest.model.verify import Placement
+from pytest_lasertest.pairsfile.scan_filters import without_scan_filters
 from pytest_lasertest.search.trials import Setting
 
 
@@ -49,3 +53,31 @@ def blame_text(tried: tuple[TraitTried, ...]) -> str:
 
 def _value(value: object) -> str:
     return f"{value:g} s" if isinstance(value, float) else str(value)
+
+
+@dataclass(frozen=True)
+class ChainTried:
+    """The candidate at the failing placement with the pair's scan filter chain taken out."""
+
+    file: str  # the chain's params file, as the pairs file names it
+    passes: bool  # whether the candidate then passes
+
+
+def blame_chain(setting: Setting, placement: Placement) -> ChainTried | None:
+    """The candidate driven at `placement` straight into the stack; None without a chain."""
+    chain = setting.controller.scan_filters
+    if chain is None:
+        return None
+    bare = dataclasses.replace(setting, controller=without_scan_filters(setting.controller))
+    run = bare.drive(setting.pair.candidate.profile, placement)
+    return ChainTried(chain.file, run.passed)
+
+
+def chain_text(tried: ChainTried) -> str:
+    """One line: whether the chain alone explains the failure."""
+    if tried.passes:
+        return (
+            f"passes without {tried.file}'s chain: the chain alone explains the failure "
+            "(tune it for the candidate's scanner)"
+        )
+    return f"fails without {tried.file}'s chain too: the chain alone does not explain it"

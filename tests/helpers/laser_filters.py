@@ -20,6 +20,19 @@ from pytest_lasertest.nav.protocol import LaserScan, Odometry
 from pytest_lasertest.pairsfile.scan_filters import read_scan_filters
 
 STANDING = Odometry(0.0, 0.0, 0.0, 0.0, 0.0)
+# Every reading, finite or not, replaced by NaN, no reading: a chain that blinds the stack.
+BLINDING = """\
+scan_to_scan_filter_chain:
+  ros__parameters:
+    filter1:
+      name: everything
+      type: laser_filters/LaserScanRangeFilter
+      params:
+        lower_threshold: 1000.0
+        upper_threshold: 2000.0
+        lower_replacement_value: .nan
+        upper_replacement_value: .nan
+"""
 
 
 def message(

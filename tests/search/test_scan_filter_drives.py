@@ -14,23 +14,10 @@ from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.pairsfile.controller import ControllerChoice
 from pytest_lasertest.pairsfile.scan_filters import with_scan_filters
 from pytest_lasertest.sim.scenario import Scenario, run_scenario
-from tests.helpers.laser_filters import STANDING, chain_of, message
+from tests.helpers.laser_filters import BLINDING, STANDING, chain_of, message
 from tests.helpers.paper import PAPER
 
 REACTIVE = ControllerChoice("reactive", "the default", ReactiveController)
-# Every reading, finite or not, replaced by NaN, no reading: a chain that blinds the stack.
-BLINDING = """\
-scan_to_scan_filter_chain:
-  ros__parameters:
-    filter1:
-      name: everything
-      type: laser_filters/LaserScanRangeFilter
-      params:
-        lower_threshold: 1000.0
-        upper_threshold: 2000.0
-        lower_replacement_value: .nan
-        upper_replacement_value: .nan
-"""
 MEDIAN = """\
 scan_filter_chain:
 - name: median

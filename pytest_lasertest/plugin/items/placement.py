@@ -34,7 +34,7 @@ from pytest_lasertest.reports.failure import (
     witness_properties,
 )
 from pytest_lasertest.reports.formats import Artifacts
-from pytest_lasertest.search.blame import blame_driver
+from pytest_lasertest.search.blame import ChainTried, TraitTried, blame_chain, blame_driver
 from pytest_lasertest.search.offsets import OffsetBox
 from pytest_lasertest.search.trials import TrialResult, Trials, noted_result
 from pytest_lasertest.search.witness import search_witness
@@ -129,17 +129,19 @@ class SearchItem(PairItem):
             self.options.recorded(self.path),
             # Hypothesis drops what it cannot save without a word: say so, or the rerun misleads.
             unwritable(self._database()),
-            # Only a regression is the change's doing, and only then may a trait be to blame.
-            blame_driver(
-                self.lasertest.setting(self.spec, self.pair, self.controller),
-                result.placement,
-            )
-            if result.classification == "regression"
-            else (),
+            *self._blame(result),
         )
         artifacts = self._write_failure(failure)
         report = failure_report(failure, self.replay, artifacts)
         raise self.failure(result.classification, report, artifacts)
+
+    def _blame(self, result: TrialResult) -> tuple[tuple[TraitTried, ...], ChainTried | None]:
+        """The driver traits and the scan filter chain tried at a regression's placement: only
+        a regression is the change's doing, and only then may a trait or the chain be to blame."""
+        if result.classification != "regression":
+            return (), None
+        setting = self.lasertest.setting(self.spec, self.pair, self.controller)
+        return blame_driver(setting, result.placement), blame_chain(setting, result.placement)
 
     def _reject(self, witness: Witness, verification: Verification) -> None:
         """Fail the item with the witness the solver should not have returned."""
