@@ -27,6 +27,15 @@ DRIVER_CASES = (
 )
 
 
+# Each scan filter case of examples/filters that fails as a regression at its `avoid-0`, why,
+# and the start of its report's `filters` line: whether the chain alone explains the failure.
+FILTER_CASES = (
+    ("front_crop.lasertest.yaml::urg04lx_to_lds01", "crop", "passes without"),
+    ("speckle_window.lasertest.yaml::ust10lx_to_rplidar_a1", "speckle window", "passes without"),
+    ("front_crop_fixed.lasertest.yaml::urg04lx_to_lds01_fixed", "late stamp", "fails without"),
+)
+
+
 # What the main job finds with the ci profile and seed 1, item by item (docs/examples.md).
 # Regressions fail the run: the candidate fails where the baseline passes, under every draw.
 REGRESSIONS = {
@@ -60,6 +69,12 @@ REGRESSIONS = {
     # The paper's 5 cm box beside the route, which the 16-beam scanner misses: its robot drives
     # into it and the 32-beam robot passes, under every further draw.
     "examples/paper.lasertest.yaml::size[candidate-misses-2]": "16 beams miss a 5 cm box",
+    # A team's laser_filters chain tuned for the old scanner (examples/filters), each for the
+    # reason its comment names (the reports' `filters` and `driver` lines, checked below): a
+    # front crop that misreads the LDS-01's angles, held in front of an obstacle on the right;
+    # a speckle window sized for 0.25 deg beams, held at a pole the A1 reads with too few; and,
+    # the crop fixed, the LDS-01's stamp at the end of its sweep.
+    **{f"examples/filters/{pair}[avoid-0]": reason for pair, reason, _ in FILTER_CASES},
 }
 # Failures that do not fail the run, each its own outcome in JUnit XML (`lasertest.outcome`).
 NOTED = {
@@ -80,6 +95,17 @@ NOTED = {
     # The late stamp's fix under Nav2: the A200 stops before a pole on its path with either
     # scanner.
     "examples/drivers/late_stamp.lasertest.yaml::late_stamp_fixed[avoid-0]": "pre-existing",
+    # A 5 cm pole on the Husky's path in examples/filters: both robots are held in front of it,
+    # with the chain tuned for the Hokuyo or sized for the A1.
+    **dict.fromkeys(
+        (
+            "examples/filters/speckle_window.lasertest.yaml::ust10lx_to_rplidar_a1"
+            "[candidate-misses-0]",
+            "examples/filters/speckle_window_fixed.lasertest.yaml::ust10lx_to_rplidar_a1_fixed"
+            "[candidate-misses-0]",
+        ),
+        "pre-existing",
+    ),
     # A 5 cm box 0.5 m ahead of the Jackal's start, below the LMS111's 0.5 m minimum range: the
     # LMS111's robot drives into it at once, the UST-10LX's is held, then turns into it.
     "examples/worlds/doorway.lasertest.yaml::lms111_to_ust10lx[baseline-misses-0]": "pre-existing",
@@ -121,6 +147,10 @@ COVERAGE_LOSSES = (
     "drivers/raised_range_min.lasertest.yaml::raised_range_min",
     "worlds/doorway.lasertest.yaml::lms111_to_ust10lx",
     "worlds/aisle.lasertest.yaml::lds01_to_rplidar_a1",
+    "filters/front_crop.lasertest.yaml::urg04lx_to_lds01",
+    "filters/front_crop_fixed.lasertest.yaml::urg04lx_to_lds01_fixed",
+    "filters/speckle_window.lasertest.yaml::ust10lx_to_rplidar_a1",
+    "filters/speckle_window_fixed.lasertest.yaml::ust10lx_to_rplidar_a1_fixed",
 )
 
 
@@ -174,6 +204,9 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
         "examples/paper.lasertest.yaml::size[no-obstacle]",
         "examples/paper.lasertest.yaml::size[candidate-misses-0]",
         "examples/paper.lasertest.yaml::size[baseline-misses-0]",
+        # With the speckle filter sized for the A1, both robots pass its pole.
+        "examples/filters/speckle_window_fixed.lasertest.yaml::ust10lx_to_rplidar_a1_fixed"
+        "[avoid-0]",
         # Among walls: both robots through the doorway to the next room, and down the aisle.
         "examples/worlds/doorway.lasertest.yaml::lms111_to_ust10lx[no-obstacle]",
         "examples/worlds/aisle.lasertest.yaml::lds01_to_rplidar_a1[no-obstacle]",
@@ -213,6 +246,17 @@ def test_the_examples_fail_on_each_downgrade_and_pass_the_upgrade(
         if trait is not None:
             lines.append(f"  driver     passes with the baseline's {trait} (*): the failure *")
         result.stdout.fnmatch_lines(lines)
+    for pair, _, filters in FILTER_CASES:
+        name = pair.split("::")[1]
+        result.stdout.fnmatch_lines(
+            [f"*::{name}[[]avoid-0[]] _*", f"  filters    {filters} *'s chain*: the chain alone *"]
+        )
+    result.stdout.fnmatch_lines(
+        [
+            "*_ examples/filters/front_crop_fixed.lasertest.yaml::*[[]avoid-0[]] _*",
+            "  driver     passes with the baseline's latency (*): the failure comes from *",
+        ]
+    )
     result.stdout.fnmatch_lines(
         [
             "*_ examples/paper.lasertest.yaml::size[[]candidate-misses-1[]] _*",
