@@ -37,11 +37,13 @@ from pytest_lasertest.inputs.node import SpecNode, describe, read_root, suggest_
 from pytest_lasertest.inputs.yamlfile import YamlMap
 from pytest_lasertest.nav.laser_filters import Filtered, NamedFilter, ScanFilterChain
 from pytest_lasertest.nav.laser_filters.chain import ROS_NAMES
-from pytest_lasertest.nav.laser_filters.params import (
+from pytest_lasertest.nav.laser_filters.filter_types import (
     CHANNEL_TYPES,
     FILTER_TYPES,
     NOT_IMITATED,
     REFUSED,
+)
+from pytest_lasertest.nav.laser_filters.params import (
     FilterProblem,
     FilterType,
     Param,
