@@ -26,14 +26,13 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
-import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Generic, TypeVar
 
 from pytest_lasertest.inputs.errors import SpecError
-from pytest_lasertest.inputs.node import SpecNode, describe, read_root, suggest_key
+from pytest_lasertest.inputs.node import SpecNode, read_root, suggest_key
 from pytest_lasertest.inputs.yamlfile import YamlMap
 from pytest_lasertest.nav.laser_filters import Filtered, NamedFilter, ScanFilterChain
 from pytest_lasertest.nav.laser_filters.chain import ROS_NAMES
@@ -53,7 +52,9 @@ from pytest_lasertest.nav.laser_filters.params import (
 from pytest_lasertest.nav.laser_filters.scan_filters import Ros
 from pytest_lasertest.nav.laser_filters.temporal import ChannelFilter
 from pytest_lasertest.pairsfile.controller import ControllerChoice
+from pytest_lasertest.pairsfile.filter_values import bool_value, double_value, int_value
 from pytest_lasertest.pairsfile.nav2_params import ros2_nodes
+from pytest_lasertest.pairsfile.ros2_params import Group, as_group, as_value, group_of, node_of
 
 SCAN_FILTERS = "scan_filters"
 # ROS 1's chain parameter; the deprecated one wins where both are set
@@ -64,21 +65,9 @@ ROS1_CHAINS = ("scan_filter_chain", "filter_chain")
 NODE_PARAMETERS = ("tf_message_filter_target_frame", "tf_message_filter_tolerance", "use_sim_time")
 # The greatest number of filters one chain runs: each is a pass over every scan.
 MAX_FILTERS = 100
-# The largest magnitude of a number a filter reads: beyond any scanner's reach in m, any angle.
-MAX_MAGNITUDE = 1e6
 _FILTER_KEY = re.compile(r"filter(\d+)\Z")
 _FILTER_FIELDS = ("name", "type", "params")
 T = TypeVar("T")
-
-
-@dataclass(frozen=True)
-class Group:
-    """Parameters under one name, as ROS 2 reads nested keys and dotted keys alike
-    (`filter1: {name: x}` and `filter1.name: x`): where the group is first written, and its
-    members, each a value or a group."""
-
-    node: SpecNode
-    members: dict[str, SpecNode | Group]
 
 
 @dataclass(frozen=True)
@@ -182,7 +171,7 @@ def _ros2_chain(root: SpecNode) -> tuple[NamedFilter, ...]:
             "chain, in front of its one laser",
             "keep the node that filters the scan your stack reads",
         )
-    group = _group(found[0][1])
+    group = group_of(found[0][1])
     _check_node_keys(group)
     return _named(_ros2_filters(group, FILTER_TYPES, "ros2"), group.node)
 
@@ -205,11 +194,11 @@ def _ros2_filters(group: Group, types: Mapping[str, FilterType[T]], ros: Ros) ->
     made: list[Made[T]] = []
     while f"filter{len(made) + 1}" in group.members:
         key = f"filter{len(made) + 1}"
-        made.append(_ros2_filter(_as_group(group.members[key], key), key, types, ros))
+        made.append(_ros2_filter(as_group(group.members[key], key), key, types, ros))
     for key, member in group.members.items():
         match = _FILTER_KEY.match(key)
         if match and int(match[1]) > len(made):
-            raise _node_of(member).error(
+            raise node_of(member).error(
                 f"{key} follows no filter{len(made) + 1}: ROS 2's chain stops at the first "
                 "filterN it does not find (filter_chain.hpp:73-106 at ros/filters ros2 "
                 f"e33463ae), so {key} never runs",
@@ -226,8 +215,8 @@ def _ros2_filter(entry: Group, key: str, types: Mapping[str, FilterType[T]], ros
     for field in ("name", "type"):
         if field not in fields:
             raise entry.node.missing(field, f"write {key}.name and {key}.type, both required")
-    name, kind = _as_value(fields["name"], "name"), _as_value(fields["type"], "type")
-    params = _as_group(fields["params"], "params").members if "params" in fields else {}
+    name, kind = as_value(fields["name"], "name"), as_value(fields["type"], "type")
+    params = as_group(fields["params"], "params").members if "params" in fields else {}
     return _filter(ros, name, kind, params, entry.node, types)
 
 
@@ -282,7 +271,7 @@ def _values(
     values: dict[str, Value] = {}
     for key, value in params.items():
         if key not in spec:
-            raise _node_of(value).error(
+            raise node_of(value).error(
                 f"{short} reads no parameter {key!r}: {ROS_NAMES[ros]} ignores it",
                 suggest_key(key, spec, {}),
             )
@@ -340,74 +329,22 @@ def _typed(ros: Ros, key: str, param: Param, written: SpecNode | Group) -> Value
     """The value of the parameter `key` as `ros` reads it, or an error at its line."""
     if param.kind == "chain":
         return _channel_chain(ros, key, written)
-    node = _as_value(written, key)
+    node = as_value(written, key)
     if param.kind == "double":
-        return _double(ros, key, param, node)
+        return double_value(ros, key, param, node)
     if param.kind == "int":
-        return _int(ros, key, node)
+        return int_value(ros, key, node)
     if param.kind == "bool":
-        return _bool(ros, key, node)
+        return bool_value(ros, key, node)
     return node.text(what=f"{key}, a name", fix="write a frame's name, e.g. base_link")
-
-
-def _double(ros: Ros, key: str, param: Param, node: SpecNode) -> float:
-    value = node.value
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise node.error(f"{key} is a number, not {describe(value)}", "write a number, e.g. 0.5")
-    if isinstance(value, int) and ros == "ros2":
-        raise node.error(
-            f"{key} is the integer {value}: ROS 2 declares {key} a double (filter_base.hpp:181-184 "
-            "at ros/filters ros2 e33463ae) and refuses an integer for it, so the chain's node "
-            "does not start",
-            f"write {value}.0",
-        )
-    number = float(value)
-    if not math.isfinite(number) and not param.special:
-        raise node.error(
-            f"{key} is {describe(value)}: the filter compares readings with it, and NaN or "
-            "infinity is meant only as a replacement value",
-            "write a finite number",
-        )
-    if math.isfinite(number) and abs(number) > MAX_MAGNITUDE:
-        raise node.error(
-            f"{key} is {number:g}, beyond ±{MAX_MAGNITUDE:g}: no scanner reads that far, and no "
-            "angle is that wide",
-            "check the figure",
-        )
-    return number
-
-
-def _int(ros: Ros, key: str, node: SpecNode) -> int:
-    value = node.value
-    if isinstance(value, int) and not isinstance(value, bool):
-        return value
-    if isinstance(value, float) and value.is_integer():
-        refused = (
-            "ROS 1 reads it only from an integer (filter_base.hpp:184-200 at ros/filters "
-            "noetic-devel 310202ed) and keeps its default"
-            if ros == "ros1"
-            else "ROS 2 declares it an integer (filter_base.hpp:191-194 at ros/filters ros2 "
-            "e33463ae) and refuses a double for it, so the chain's node does not start"
-        )
-        raise node.error(f"{key} is the double {value:g}: {refused}", f"write {int(value)}")
-    raise node.error(f"{key} is a whole number, not {describe(value)}", "write an integer, e.g. 1")
-
-
-def _bool(ros: Ros, key: str, node: SpecNode) -> bool:
-    if isinstance(node.value, bool):
-        return node.value
-    reads = "ROS 1 reads it only from true or false" if ros == "ros1" else "ROS 2 refuses it"
-    raise node.error(
-        f"{key} is true or false, not {describe(node.value)}: {reads}", "write true or false"
-    )
 
 
 def _channel_chain(ros: Ros, key: str, written: SpecNode | Group) -> tuple[ChannelFilter, ...]:
     """A LaserArrayFilter's (or LaserMedianFilter's) chain of multi-channel filters."""
     if ros == "ros1":
-        made = _ros1_filters(_as_value(written, key), CHANNEL_TYPES, ros)
+        made = _ros1_filters(as_value(written, key), CHANNEL_TYPES, ros)
     else:
-        made = _ros2_filters(_as_group(written, key), CHANNEL_TYPES, ros)
+        made = _ros2_filters(as_group(written, key), CHANNEL_TYPES, ros)
     return tuple(one.filter for one in made)
 
 
@@ -426,43 +363,15 @@ def _located(
         f"set {' and '.join(left)} in the filter's params ({problem.fix})" if left else problem.fix
     )
     if given:
-        return _node_of(params[given[-1]]).error(problem.problem + notes, fix)
+        return node_of(params[given[-1]]).error(problem.problem + notes, fix)
     field = f"{where.field}.params.{problem.params[-1]}"
     return SpecError(where.location, field, problem.problem + notes, fix)
-
-
-def _group(node: SpecNode) -> Group:
-    """A mapping's parameters, nested keys and dotted keys alike (`Group`)."""
-    group = Group(node, {})
-    for key, child in node.entries(what="parameters").items():
-        _insert(group, key.split("."), child)
-    return group
-
-
-def _insert(group: Group, parts: list[str], child: SpecNode) -> None:
-    head, existing = parts[0], group.members.get(parts[0])
-    if len(parts) == 1 and not isinstance(child.value, YamlMap):
-        if existing is not None:
-            raise child.error(f"{head} is set twice in this group", "set each parameter once")
-        group.members[head] = child
-        return
-    if existing is not None and not isinstance(existing, Group):
-        raise child.error(
-            f"{head} is set both as a value and as a group of parameters", "set it once"
-        )
-    inner = existing if isinstance(existing, Group) else Group(child, {})
-    group.members[head] = inner
-    if len(parts) > 1:
-        _insert(inner, parts[1:], child)
-        return
-    for key, grandchild in child.entries(what="parameters").items():
-        _insert(inner, key.split("."), grandchild)
 
 
 def _check_keys(group: Group, allowed: tuple[str, ...], what: str) -> None:
     for key, member in group.members.items():
         if key not in allowed:
-            raise _node_of(member).error(
+            raise node_of(member).error(
                 f"unknown key {key!r} of {what}: ROS 2's chain reads name, type and params "
                 "alone, and ignores it",
                 suggest_key(key, allowed, {}),
@@ -473,7 +382,7 @@ def _check_node_keys(group: Group) -> None:
     """The chain node's parameters: filter1, filter2, ... and its own (NODE_PARAMETERS)."""
     for key, member in group.members.items():
         if not _FILTER_KEY.match(key) and key not in NODE_PARAMETERS:
-            raise _node_of(member).error(
+            raise node_of(member).error(
                 f"unknown parameter {key!r} of the chain node: it reads filter1, filter2, ... "
                 f"and {', '.join(NODE_PARAMETERS)}",
                 suggest_key(key, ("filter1", *NODE_PARAMETERS), {}),
@@ -490,27 +399,6 @@ def _check_names(ros: Ros, names: list[SpecNode]) -> None:
                 "give each filter of the chain its own name",
             )
         seen.add(name.value)
-
-
-def _as_group(member: SpecNode | Group, key: str) -> Group:
-    if isinstance(member, Group):
-        return member
-    raise member.error(
-        f"expected a mapping of {key}'s parameters, got {describe(member.value)}",
-        "write `key: value` pairs, indented below this line",
-    )
-
-
-def _as_value(member: SpecNode | Group, key: str) -> SpecNode:
-    if isinstance(member, SpecNode):
-        return member
-    raise member.node.error(
-        f"{key} is a mapping where a value belongs", f"write {key}: VALUE on one line"
-    )
-
-
-def _node_of(member: SpecNode | Group) -> SpecNode:
-    return member if isinstance(member, SpecNode) else member.node
 
 
 def _short(text: str) -> str:
