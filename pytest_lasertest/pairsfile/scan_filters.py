@@ -41,14 +41,9 @@ from pytest_lasertest.nav.laser_filters.filter_types import (
     FILTER_TYPES,
     NOT_IMITATED,
     REFUSED,
-)
-from pytest_lasertest.nav.laser_filters.params import (
-    FilterProblem,
-    FilterType,
-    Param,
     ScanFilter,
-    Value,
 )
+from pytest_lasertest.nav.laser_filters.params import FilterProblem, FilterType, Param, Value
 from pytest_lasertest.nav.laser_filters.scan_filters import Ros
 from pytest_lasertest.nav.laser_filters.temporal import ChannelFilter
 from pytest_lasertest.pairsfile.controller import ControllerChoice

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from pytest_lasertest.model.geometry import Point2D
 from pytest_lasertest.model.robot import Robot
-from pytest_lasertest.nav.laser_filters.params import ScanFilter
+from pytest_lasertest.nav.laser_filters.filter_types import ScanFilter
 from pytest_lasertest.nav.laser_filters.scan_filters import Ros
 from pytest_lasertest.nav.laser_filters.temporal import ArrayFilter
 from pytest_lasertest.nav.protocol import ControllerFactory, InFront, LaserScan, Odometry

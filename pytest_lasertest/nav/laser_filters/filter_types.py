@@ -17,7 +17,6 @@ from pytest_lasertest.nav.laser_filters.params import (
     Param,
     Params,
     Refusal,
-    ScanFilter,
     Value,
     as_chain,
     as_flag,
@@ -42,7 +41,27 @@ from pytest_lasertest.nav.laser_filters.scan_filters import (
 )
 from pytest_lasertest.nav.laser_filters.temporal import ArrayFilter, ChannelFilter, Statistic
 
-__all__ = ["BASE_FRAMES", "CHANNEL_TYPES", "FILTER_TYPES", "NOT_IMITATED", "REFUSED"]
+__all__ = [
+    "BASE_FRAMES",
+    "CHANNEL_TYPES",
+    "FILTER_TYPES",
+    "NOT_IMITATED",
+    "REFUSED",
+    "ScanFilter",
+]
+
+# A filter of a scan, as a chain runs it: one of the types below.
+ScanFilter = (
+    RangeFilter
+    | AngularBoundsFilter
+    | AngularBoundsFilterInPlace
+    | BoxFilter
+    | FootprintFilter
+    | InterpolationFilter
+    | SpeckleFilter
+    | ShadowsFilter
+    | ArrayFilter
+)
 
 # LaserScanRangeFilter: ROS 1's dynamic_reconfigure defaults (cfg/RangeFilter.cfg:43-53, the
 # filter's config_ at range_filter.h:56); ROS 2's zeros over the code's (range_filter.h:60-77).

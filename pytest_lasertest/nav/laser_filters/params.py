@@ -20,18 +20,8 @@ from dataclasses import dataclass
 from typing import Generic, Literal, TypeVar
 
 from pytest_lasertest.model.robot import ParameterValue
-from pytest_lasertest.nav.laser_filters.scan_filters import (
-    AngularBoundsFilter,
-    AngularBoundsFilterInPlace,
-    BoxFilter,
-    FootprintFilter,
-    InterpolationFilter,
-    RangeFilter,
-    Ros,
-    ShadowsFilter,
-    SpeckleFilter,
-)
-from pytest_lasertest.nav.laser_filters.temporal import ArrayFilter, ChannelFilter
+from pytest_lasertest.nav.laser_filters.scan_filters import Ros
+from pytest_lasertest.nav.laser_filters.temporal import ChannelFilter
 
 __all__ = [
     "FilterProblem",
@@ -39,21 +29,9 @@ __all__ = [
     "Param",
     "Params",
     "Refusal",
-    "ScanFilter",
     "Value",
 ]
 
-ScanFilter = (
-    RangeFilter
-    | AngularBoundsFilter
-    | AngularBoundsFilterInPlace
-    | BoxFilter
-    | FootprintFilter
-    | InterpolationFilter
-    | SpeckleFilter
-    | ShadowsFilter
-    | ArrayFilter
-)
 Kind = Literal["double", "int", "bool", "string", "chain"]
 Value = ParameterValue | tuple[ChannelFilter, ...]
 T = TypeVar("T")
