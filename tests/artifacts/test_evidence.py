@@ -23,8 +23,8 @@ from tests.helpers.texts import VALID_PAIRS, write
 
 # A corridor along x, its walls 4 m apart: one listed as a box, one as a segment.
 WALLED_PAIRS = VALID_PAIRS.replace(
-    "  goal: {x: 10.0, y: 0.0}\n",
-    "  route: [{x: 10.0, y: 0.0}]\n"
+    "  goal: {x: 9.0, y: 0.0}\n",
+    "  route: [{x: 9.0, y: 0.0}]\n"
     "  walls:\n"
     "    - {x: 5.0, y: 2.0, length: 14.0, width: 0.2}\n"
     "    - {from: {x: -2.0, y: -2.0}, to: {x: 12.0, y: -2.0}, thickness: 0.2}\n",

@@ -166,8 +166,8 @@ def test_an_absolute_robot_path_is_kept_as_written(tmp_path: Path) -> None:
 
 # A corridor of two walls, one listed as a box, one as a segment, around a route along x.
 WALLED_PAIRS = VALID_PAIRS.replace(
-    "  goal: {x: 10.0, y: 0.0}\n",
-    "  route: [{x: 10.0, y: 0.0}]\n"
+    "  goal: {x: 9.0, y: 0.0}\n",
+    "  route: [{x: 9.0, y: 0.0}]\n"
     "  walls:\n"
     "    - {x: 5.0, y: 2.0, length: 14.0, width: 0.2}\n"
     "    - {from: {x: -2.0, y: -2.0}, to: {x: 12.0, y: -2.0}, thickness: 0.2}\n",
@@ -219,7 +219,7 @@ def test_a_relative_map_path_is_rewritten_so_the_repro_finds_the_same_map_file(
     assert (repro.parent / world["map"]).resolve() == map_file.resolve()
     # The rest of the world as written, in its order.
     assert list(world) == ["map", "start", "goal", "time_limit"]
-    assert world["goal"] == {"x": 10.0, "y": 0.0}
+    assert world["goal"] == {"x": 9.0, "y": 0.0}
 
 
 def test_a_map_path_beside_the_repro_is_written_as_the_user_wrote_it(tmp_path: Path) -> None:

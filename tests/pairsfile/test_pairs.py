@@ -59,7 +59,7 @@ def test_yaml_anchors_and_merge_keys_let_pairs_share_a_profile(tmp_path: Path) -
 
 def test_a_route_ends_at_its_goal(tmp_path: Path) -> None:
     text = VALID_PAIRS.replace(
-        "  goal: {x: 10.0, y: 0.0}", "  route:\n    - {x: 6.0, y: 0.0}\n    - {x: 6.0, y: 4.0}"
+        "  goal: {x: 9.0, y: 0.0}", "  route:\n    - {x: 6.0, y: 0.0}\n    - {x: 6.0, y: 4.0}"
     )
     world = load_pairs_file(write(tmp_path, text)).world
     assert world.start == Pose2D(0.0, 0.0, 0.0)
