@@ -104,22 +104,18 @@ def read_scan_filters(node: SpecNode) -> ScanFilterChain:
 
 
 def with_scan_filters(choice: ControllerChoice, chain: ScanFilterChain | None) -> ControllerChoice:
-    """The controller choice with `chain` in front of each controller it makes, and its stack
-    description saying so; `choice` itself where there is no chain."""
+    """The controller choice with `chain` in front of each controller it makes (the reports
+    name the chain after the stack); `choice` itself where there is no chain."""
     if chain is None:
         return choice
-    stack = f"{choice.stack}, {chain.describe()}" if choice.stack else chain.describe()
-    factory = Filtered(choice.factory, chain)
-    return dataclasses.replace(choice, factory=factory, stack=stack, scan_filters=chain)
+    return dataclasses.replace(choice, factory=Filtered(choice.factory, chain), scan_filters=chain)
 
 
 def without_scan_filters(choice: ControllerChoice) -> ControllerChoice:
     """The controller choice `with_scan_filters` made, with its chain taken out again."""
-    chain = choice.scan_filters
-    if chain is None or not isinstance(choice.factory, Filtered):
+    if choice.scan_filters is None or not isinstance(choice.factory, Filtered):
         return choice
-    stack = choice.stack.removesuffix(chain.describe()).removesuffix(", ")
-    return dataclasses.replace(choice, factory=choice.factory.inner, stack=stack, scan_filters=None)
+    return dataclasses.replace(choice, factory=choice.factory.inner, scan_filters=None)
 
 
 def _ros1_chain(root: SpecNode) -> tuple[NamedFilter, ...]:

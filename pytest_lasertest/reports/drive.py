@@ -137,9 +137,12 @@ def _brief(run: Run) -> str:
 
 def controller_line(controller: ControllerChoice) -> str:
     """`  controller move_base (the default)`, and what the stack runs where we know it:
-    `  controller nav2 (from gate.lasertest.yaml:3): Nav2 jazzy: NavFn, MPPI, ...`."""
-    stack = f": {controller.stack}" if controller.stack else ""
-    return f"  controller {controller.name} ({controller.source}){stack}"
+    `  controller nav2 (from gate.lasertest.yaml:3): Nav2 jazzy: NavFn, MPPI, ...`, the scan
+    filter chain in front of it last."""
+    chain = controller.scan_filters
+    said = [controller.stack, chain.describe() if chain is not None else ""]
+    stack = ", ".join(part for part in said if part)
+    return f"  controller {controller.name} ({controller.source}){': ' if stack else ''}{stack}"
 
 
 def robot_line(robot: Robot) -> str:

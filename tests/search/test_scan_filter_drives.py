@@ -12,7 +12,8 @@ from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.nav.protocol import InFront, LaserScan, Odometry
 from pytest_lasertest.nav.reactive import ReactiveController
 from pytest_lasertest.pairsfile.controller import ControllerChoice
-from pytest_lasertest.pairsfile.scan_filters import with_scan_filters
+from pytest_lasertest.pairsfile.scan_filters import with_scan_filters, without_scan_filters
+from pytest_lasertest.reports.drive import controller_line
 from pytest_lasertest.sim.scenario import Scenario, run_scenario
 from tests.helpers.laser_filters import BLINDING, STANDING, chain_of, message
 from tests.helpers.paper import PAPER
@@ -47,7 +48,12 @@ def test_a_chain_that_drops_every_reading_drives_the_robot_into_a_pole_the_bare_
 def test_the_stack_description_names_the_chain_and_its_filters(tmp_path: Path) -> None:
     nav2 = ControllerChoice("nav2", "the default", ReactiveController, "Nav2 jazzy: NavFn, MPPI")
     chosen = with_scan_filters(nav2, chain_of(tmp_path, BLINDING))
-    assert chosen.stack == "Nav2 jazzy: NavFn, MPPI, scan filters: filters.yaml (1 filter)"
+    assert controller_line(chosen) == (
+        "  controller nav2 (the default): Nav2 jazzy: NavFn, MPPI, scan filters: filters.yaml "
+        "(1 filter)"
+    )
+    # Taken out again, for the blame's drive without it: the stack alone.
+    assert controller_line(without_scan_filters(chosen)) == controller_line(nav2)
     assert with_scan_filters(REACTIVE, None) is REACTIVE
 
 
