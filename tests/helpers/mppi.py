@@ -9,9 +9,9 @@ from collections.abc import Mapping
 import numpy as np
 
 from pytest_lasertest.model.robot import ParameterValue
+from pytest_lasertest.nav.nav2.controller_params import MPPI
 from pytest_lasertest.nav.nav2.mppi import F32, CostGrid, Critic, CriticData, Optimizer
 from pytest_lasertest.nav.nav2.nav2 import _follow_path
-from pytest_lasertest.nav.nav2.params import MPPI
 from pytest_lasertest.nav.nav2.settings import Nav2Settings
 from tests.helpers import nav2_params as params
 

@@ -10,7 +10,8 @@ and the planner GridBased.
 What we imitate is read, checked and applied; a plugin we do not imitate, where its absence
 would change what the robot does, is a `ParameterProblem` naming the parameter and the fix;
 every parameter we read no further is listed in `Nav2Config.unmodelled`, so that a report can
-say once what was left out.
+say once what was left out. The controller server's readers (FollowPath's MPPI or DWB, the
+checkers) are in controller_params.py.
 """
 
 from __future__ import annotations
@@ -22,30 +23,17 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from pytest_lasertest.model.robot import ParameterValue
-from pytest_lasertest.nav.move_base.settings import MAX_ROLLOUT_POSES
 from pytest_lasertest.nav.move_base.static_layer import StaticLayerSettings
+from pytest_lasertest.nav.nav2.controller_params import read_controller_server
 from pytest_lasertest.nav.nav2.costmap_params import has_static_layer, read_costmap
-from pytest_lasertest.nav.nav2.dwb import CODE_DEFAULTS, DwbSettings, rollout_poses
-from pytest_lasertest.nav.nav2.dwb import CRITICS as DWB_CRITICS
-from pytest_lasertest.nav.nav2.mppi import SAME_PERIOD
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
 from pytest_lasertest.nav.nav2.settings import (
-    CRITICS,
-    MppiCritic,
     Nav2Settings,
-    code_default_critics,
     code_defaults,
 )
 
 Parameter = tuple[str, str, ParameterValue]
-MPPI = "nav2_mppi_controller::MPPIController"
-DWB = "dwb_core::DWBLocalPlanner"
 NAVFN = "nav2_navfn_planner::NavfnPlanner"
-# MPPI's samples x steps a cycle: nav2_params.yaml's 2000 x 56 is 112,000.
-MAX_MPPI_POINTS = 1_000_000
-# Read but not imitated, for a reason docs/explanation/navigation.md gives: the routes here
-# have no goal heading.
-NOT_IMITATED_CRITICS = frozenset({"GoalAngleCritic"})
 
 
 @dataclass(frozen=True)
@@ -125,180 +113,6 @@ def _meant(name: str, known: Iterable[str]) -> str:
     """The note ' (did you mean X?)' for the known name X nearest a misspelt `name`, if any."""
     near = difflib.get_close_matches(name, sorted(known), n=1, cutoff=0.85)
     return f" (did you mean {near[0]}?)" if near else ""
-
-
-def _controller_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
-    """controller_server: its rate, the FollowPath controller (MPPI or DWB), the progress and goal
-    checkers. A plugin list left as its default names its default plugin: FollowPath is DWB
-    (controller_server.cpp:40-58, 93-118 at jazzy f4108e5b)."""
-    listed = node.names("controller_plugins", ("FollowPath",))
-    if "FollowPath" not in listed:
-        raise node.problem(
-            "controller_plugins",
-            "does not name FollowPath, the controller the default behaviour tree asks for",
-            'write controller_plugins: ["FollowPath"] and FollowPath\'s parameters',
-        )
-    frequency = node.number("controller_frequency", settings.controller_frequency)
-    default = DWB if listed == ("FollowPath",) else None
-    if node.plugin("FollowPath", (MPPI, DWB), "controller", default) == DWB:
-        settings = _dwb(node, settings)
-    else:
-        settings = _mppi(node, settings)
-        _check_period(node, frequency, settings.mppi.model_dt)
-    progress = _checker(node, settings.release, "progress_checker", PROGRESS_CHECKER)
-    goal = _checker(node, settings.release, "goal_checker", GOAL_CHECKER)
-    return dataclasses.replace(
-        settings,
-        controller_frequency=frequency,
-        required_movement_radius=node.number(
-            f"{progress}.required_movement_radius", settings.required_movement_radius
-        ),
-        movement_time_allowance=node.number(
-            f"{progress}.movement_time_allowance", settings.movement_time_allowance
-        ),
-        xy_goal_tolerance=node.number(f"{goal}.xy_goal_tolerance", settings.xy_goal_tolerance),
-    )
-
-
-PROGRESS_CHECKER = "nav2_controller::SimpleProgressChecker"
-GOAL_CHECKER = "nav2_controller::SimpleGoalChecker"
-
-
-def _checker(node: NodeParameters, release: str, name: str, kind: str) -> str:
-    """The progress or goal checker's name: the first of `<name>_plugins` (`name` by default),
-    or Humble's one progress_checker_plugin (controller_server.cpp:53, 84-89 at humble
-    3c3db59d); its plugin must be `kind`, the default only for the default name."""
-    if release == "humble" and name == "progress_checker":
-        listed: tuple[str, ...] = (node.text("progress_checker_plugin", name),)
-    else:
-        listed = node.names(f"{name}_plugins", (name,))
-    node.plugin(listed[0], (kind,), name.replace("_", " "), kind if listed == (name,) else None)
-    return listed[0]
-
-
-def _mppi(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
-    """MPPI as FollowPath: the optimizer's parameters, its critics and theirs."""
-    if node.text("FollowPath.motion_model", "DiffDrive") != "DiffDrive":
-        raise node.problem(
-            "FollowPath.motion_model", "the robots here are differential drives", "write DiffDrive"
-        )
-    mppi = node.fields("FollowPath.", settings.mppi)
-    if mppi.batch_size * mppi.time_steps > MAX_MPPI_POINTS:
-        raise node.problem(
-            "FollowPath.batch_size",
-            f"{mppi.batch_size:,} samples of {mppi.time_steps} steps are "
-            f"{mppi.batch_size * mppi.time_steps:,} points every cycle, more than the "
-            f"{MAX_MPPI_POINTS:,} the gate accepts: a run would take hours",
-            "lower batch_size or time_steps (nav2_params.yaml: 2000 x 56)",
-        )
-    # Optimizer::getParams takes ax_max's magnitude and turns a positive ax_min negative,
-    # with a warning (optimizer.cpp:90-97 at jazzy f4108e5b).
-    mppi = dataclasses.replace(mppi, ax_max=abs(mppi.ax_max), ax_min=-abs(mppi.ax_min))
-    return dataclasses.replace(
-        settings,
-        mppi=mppi,
-        critics=_critics(node, settings.release),
-        prune_distance=node.number("FollowPath.prune_distance", settings.prune_distance),
-        max_robot_pose_search_dist=_search_distance(node, settings.max_robot_pose_search_dist),
-    )
-
-
-def _search_distance(node: NodeParameters, default: float | None) -> float | None:
-    """FollowPath.max_robot_pose_search_dist, if the file sets it."""
-    name = "FollowPath.max_robot_pose_search_dist"
-    return node.number(name, 0.0) if name in node.values else default
-
-
-def _check_period(node: NodeParameters, frequency: float, model_dt: float) -> None:
-    """MPPI refuses to start where the controller's period is longer than a step of its
-    model (Optimizer::setOffset, optimizer.cpp:115-136 at jazzy f4108e5b)."""
-    if 1.0 / frequency > model_dt + SAME_PERIOD:
-        raise node.problem(
-            "controller_frequency",
-            f"{frequency:g} Hz is a period longer than MPPI's model_dt ({model_dt:g} s): Nav2's "
-            'MPPI refuses to start ("Controller period more then model dt")',
-            f"write controller_frequency: {1.0 / model_dt:g}, or a shorter model_dt",
-        )
-
-
-def _dwb(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
-    """DWB as FollowPath: its own parameters, its critics and theirs (`Critic.scale`,
-    `PathAlign.forward_point_distance`, `RotateToGoal.slowing_factor`, ...), over the code's
-    defaults (`dwb.CODE_DEFAULTS`)."""
-    if "FollowPath.critics" not in node.values:
-        # Declared without a default (dwb_local_planner.cpp:81-83, 204-206 at jazzy f4108e5b).
-        raise node.problem(
-            "FollowPath.critics",
-            'is not set: DWB refuses to configure ("No critics defined for FollowPath")',
-            f"list the critics, e.g. critics: [{', '.join(DWB_CRITICS)}]",
-        )
-    critics = node.names("FollowPath.critics", DWB_CRITICS)
-    unknown = [name for name in critics if name not in DWB_CRITICS]
-    if unknown:
-        raise node.problem(
-            "FollowPath.critics",
-            f"{unknown[0]} is a critic the DWB imitation does not have",
-            f"leave it out, or use those it has: {', '.join(DWB_CRITICS)}",
-        )
-    if node.number("FollowPath.RotateToGoal.lookahead_time", -1.0) >= 0.0:
-        raise node.problem(
-            "FollowPath.RotateToGoal.lookahead_time",
-            "only a negative lookahead_time (the trajectory's last pose) is imitated",
-            "write -1.0, Nav2's default",
-        )
-    renamed = {
-        f"{critic}.{leaf}": field.name
-        for field in dataclasses.fields(DwbSettings)
-        for critic in DWB_CRITICS
-        for leaf in _critic_leaves(field.name, critic)
-    }
-    dwb = node.fields("FollowPath.", CODE_DEFAULTS, renamed, exclude=("critics",))
-    dwb = dataclasses.replace(dwb, critics=critics)
-    poses = rollout_poses(dwb)
-    if poses > MAX_ROLLOUT_POSES:
-        raise node.problem(
-            "FollowPath.vx_samples",
-            f"DWB would roll out {poses:,} poses every cycle (vx_samples x vtheta_samples "
-            "trajectories of sim_time over the granularities' steps), more than the "
-            f"{MAX_ROLLOUT_POSES:,} the gate accepts: a run would take hours",
-            "lower vx_samples, vtheta_samples or sim_time, or raise linear_granularity and "
-            "angular_granularity",
-        )
-    return dataclasses.replace(settings, dwb=dwb, prune_distance=dwb.prune_distance)
-
-
-def _critic_leaves(field: str, critic: str) -> list[str]:
-    """The names under `critic.` in a params file that set DwbSettings' `field`:
-    path_align_scale is PathAlign.scale, slowing_factor RotateToGoal.slowing_factor."""
-    prefix = "".join("_" + c.lower() if c.isupper() else c for c in critic).lstrip("_") + "_"
-    if field.startswith(prefix):
-        return [field.removeprefix(prefix)]
-    owned = {
-        "RotateToGoal": ("slowing_factor", "lookahead_time"),
-        "Oscillation": ("oscillation_reset_dist", "oscillation_reset_angle", "x_only_threshold"),
-    }
-    return [field] if field in owned.get(critic, ()) else []
-
-
-def _critics(node: NodeParameters, release: str) -> tuple[MppiCritic, ...]:
-    """MPPI's critics in the order FollowPath.critics lists them (none if it is not set,
-    critic_manager.cpp:39 at jazzy f4108e5b), each with its parameters over its own defaults;
-    one with enabled false is left out."""
-    by_name = code_default_critics(release)
-    critics = []
-    for name in node.names("FollowPath.critics", ()):
-        if name in NOT_IMITATED_CRITICS:
-            continue
-        if name not in CRITICS:
-            raise node.problem(
-                "FollowPath.critics",
-                f"{name} is a critic the MPPI imitation does not have",
-                f"leave it out, or use those it has: {', '.join(CRITICS)}",
-            )
-        renamed = {"cost_weight": "weight", "cost_power": "power"}
-        if node.flag(f"FollowPath.{name}.enabled", True):
-            critics.append(node.fields(f"FollowPath.{name}.", by_name[name], renamed))
-    return tuple(critics)
 
 
 def _local_costmap(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
@@ -478,7 +292,7 @@ def _behavior_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settin
 
 
 READERS = {
-    "controller_server": _controller_server,
+    "controller_server": read_controller_server,
     "local_costmap": _local_costmap,
     "global_costmap": _global_costmap,
     "planner_server": _planner_server,
