@@ -9,6 +9,7 @@ bottom row comes first).
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import math
 from dataclasses import dataclass
@@ -83,15 +84,23 @@ class OccupancyGrid:
     def wall_boxes(self, height: float) -> tuple[Box, ...]:
         """Boxes `height` m high that cover exactly the occupied cells: each row's runs of
         occupied cells, runs of the same columns in neighbouring rows merged into one box."""
-        boxes: list[Box] = []
+        boxes = [self._box(*rectangle, height) for rectangle in self._occupied_rectangles]
+        return tuple(sorted(boxes, key=lambda box: (box.y, box.x)))
+
+    @functools.cached_property
+    def _occupied_rectangles(self) -> tuple[tuple[tuple[int, int], int, int], ...]:
+        """The wall boxes' cells, ((first, last column), first row, end row) each: once for a
+        map, whose reader counts them and whose walls are made of them (0.3 s for a speckled
+        800 x 800 map)."""
+        rectangles = []
         open_runs: dict[tuple[int, int], int] = {}  # (first, last column) -> first row
         for row in range(self.height + 1):
             runs = set(_runs(self.data[row] >= OCCUPIED)) if row < self.height else set()
             for run in [run for run in open_runs if run not in runs]:
-                boxes.append(self._box(run, open_runs.pop(run), row, height))
+                rectangles.append((run, open_runs.pop(run), row))
             for run in runs:
                 open_runs.setdefault(run, row)
-        return tuple(sorted(boxes, key=lambda box: (box.y, box.x)))
+        return tuple(rectangles)
 
     def _box(self, columns: tuple[int, int], first: int, end: int, height: float) -> Box:
         """The box over cells [first, end) x [columns[0], columns[1]]."""
