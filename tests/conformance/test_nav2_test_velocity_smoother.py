@@ -3,11 +3,11 @@
 command, bounded by the acceleration or the deceleration limit over 20 Hz, the velocity limit,
 and the parameters configure refuses.
 
-Not applicable: the eta assertions of testapplyConstraints and all of testfindEtaConstraint
-(scale_velocities, not imitated), approxClosedLoopTestTimer and testClosedLoopSub (CLOSED_LOOP
-feedback), the message counts, the final stop and the deadband of openLoopTestTimer (a wall
-timer spun for 1.5 s, velocity_timeout and deadband_velocity, none imitated), testCommandCallback
-and testDynamicParameter (topics and parameter services).
+Not applicable: approxClosedLoopTestTimer and testClosedLoopSub (CLOSED_LOOP feedback), the
+message counts and the final stop of openLoopTestTimer (a wall timer spun for 1.5 s, and the
+stop of a command stream that timed out: the stacks here command every cycle, and params.py
+refuses a velocity_timeout they could outlast), testCommandCallback and testDynamicParameter
+(topics and parameter services).
 """
 
 from __future__ import annotations
@@ -18,7 +18,11 @@ import pytest
 
 from pytest_lasertest.model.robot import ParameterValue
 from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
-from pytest_lasertest.nav.nav2.velocity_smoother import VelocitySmoother
+from pytest_lasertest.nav.nav2.velocity_smoother import (
+    VelocitySmoother,
+    apply_constraints,
+    eta_constraint,
+)
 from tests.helpers.nav2_params import nav2_settings
 from tests.helpers.upstream import NAVIGATION2_JAZZY, Source
 
@@ -190,10 +194,8 @@ def test_a_command_across_zero_slows_by_the_deceleration_then_speeds_up_by_the_a
     assert speeds[-1] == pytest.approx(target, abs=0.001)
 
 
-@SMOOTHER.test("VelocitySmootherTest.openLoopTestTimer", assertions=1)
-def test_a_command_beyond_max_velocity_is_output_no_faster_than_it() -> None:
-    # The upstream test's parameters; ours reads neither, and on one axis neither raises an
-    # output (scale_velocities scales all axes alike, a deadband only zeroes small outputs).
+@SMOOTHER.test("VelocitySmootherTest.openLoopTestTimer", assertions=2)
+def test_no_output_is_above_max_velocity_nor_within_the_deadband() -> None:
     # max_velocity is left out: Nav2's default 0.5 m/s (velocity_smoother.cpp:65) is ours too.
     smoothing = smoother(scale_velocities=True, deadband_velocity=(0.2, 0.0, 0.0))
     outputs = []
@@ -201,7 +203,53 @@ def test_a_command_beyond_max_velocity_is_output_no_faster_than_it() -> None:
         time = millisecond / 1000.0  # s
         if smoothing.due(time):
             outputs.append(smoothing.step((1.0, 0.0), time)[0])
+    # The first output that is not 0 is above the deadband: the ramp's 0.125 m/s a tick is
+    # published as 0, and the next tick starts from 0.125 m/s all the same.
+    assert next(speed for speed in outputs if speed != 0.0) > 0.2
     assert max(outputs) <= 0.5
+
+
+# findEtaConstraint(v_curr, v_cmd) with accel 0.1 and decel -1.0 m/s^2 at 20 Hz (dv 0.005 and
+# 0.05 m/s a tick): -1 within a tick's change, else the factor that brings the change to it.
+ETA = SMOOTHER.test("VelocitySmootherTest.testfindEtaConstraint", assertions=1)
+ETA_CASES = [
+    # In range: constant, speeding up and slowing down on either side of 0, through 0.
+    *[
+        (current, wanted, -1.0)
+        for current, wanted in [
+            (1.0, 1.0), (-1.0, -1.0), (0.5, 0.504), (0.5, 0.46), (0.0, 0.004), (0.04, 0.0),
+            (-0.5, -0.504), (-0.5, -0.46), (0.0, -0.004), (-0.04, 0.0), (-0.02, 0.02),
+            (0.02, -0.02),
+        ]
+    ],
+    # Faster than a tick allows.
+    (0.5, 1.5, 0.005), (1.5, 0.5, 0.05), (0.0, 1.0, 0.005), (1.0, 0.0, 0.05),
+    (-0.5, -1.5, 0.005), (-1.5, -0.5, 0.05), (0.0, -1.0, 0.005), (-1.0, 0.0, 0.05),
+    (-0.2, 0.8, 0.05), (0.2, -0.8, 0.05),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("current", "wanted", "eta"), [pytest.param(*case, marks=ETA) for case in ETA_CASES]
+)
+def test_the_factor_on_a_change_beyond_a_tick_s_limit_brings_it_to_the_limit(
+    current: float, wanted: float, eta: float
+) -> None:
+    assert eta_constraint(current, wanted, (ACCEL, DECEL), FREQUENCY) == eta
+
+
+@SMOOTHER.test("VelocitySmootherTest.testapplyConstraints", assertions=3)
+def test_a_change_scaled_by_eta_is_output_within_the_tick_s_limit() -> None:
+    # accel 1.5 and decel -2.0 m/s^2 at 20 Hz: 0.075 m/s a tick speeding up.
+    assert apply_constraints(1.0, 2.0, (1.5, -2.0), FREQUENCY, 0.075) == pytest.approx(
+        1.075, abs=0.01
+    )
+    assert apply_constraints(0.5, 0.55, (1.5, -2.0), FREQUENCY, 0.075) == pytest.approx(
+        0.503, abs=0.01
+    )
+    assert apply_constraints(0.8, 1.0, (3.2, -3.2), FREQUENCY, 0.75) == pytest.approx(
+        1.075, abs=0.95
+    )
 
 
 INVALID = SMOOTHER.test("VelocitySmootherTest.testInvalidParams", assertions=1)

@@ -526,8 +526,14 @@ def test_the_bundled_husky_runs_clearpaths_a200_parameters_with_dwb(tmp_path: Pa
     assert (s.collision_monitor.time_before_collision, s.collision_monitor.min_points) == (0.3, 12)
     assert s.smoother.max_accel == (0.5, 0.5)
     assert (s.behaviors.min_rotational_vel, s.behaviors.rotational_acc_lim) == (0.2, 0.5)
-    # Jazzy reads progress_checker_plugins; Clearpath's file writes Humble's singular name.
-    assert "progress_checker_plugin" in config.unmodelled[0]
+    # Left unread: what Nav2 Jazzy does not read either. It reads progress_checker_plugins,
+    # where Clearpath's file writes Humble's singular name; DWB has no `stateful`; a scan
+    # source has no heights (only a point cloud's, pointcloud.cpp:151 at jazzy f4108e5b).
+    assert config.unmodelled == (
+        "controller_server: progress_checker_plugin (did you mean progress_checker_plugins?), "
+        "FollowPath.stateful",
+        "collision_monitor: scan.min_height, scan.max_height",
+    )
 
 
 @pytest.mark.parametrize(
@@ -555,6 +561,51 @@ def test_a_broken_dwb_section_is_an_error_at_its_line(
     with pytest.raises(SpecError) as raised:
         load(tmp_path, team=husky.replace(old, new))
     assert raised.value.location.line == line
+    assert problem in raised.value.problem
+
+
+@pytest.mark.parametrize(
+    ("edits", "problem"),
+    [
+        pytest.param(
+            (("max_vel_y: 0.0", "max_vel_y: 0.5"), ("acc_lim_y: 0.0", "acc_lim_y: 2.5")),
+            "DWB would sample lateral speeds from 0 to 0.5 m/s",
+            id="sideways-dwb",
+        ),
+        pytest.param(
+            (("velocity_timeout: 1.0", "velocity_timeout: 0.02"),),
+            "0.02 s is no longer than the controller's cycle (0.05 s)",
+            id="smoother-timing-out",
+        ),
+        pytest.param(
+            (('"assisted_teleop", "wait"]', '"assisted_teleop"]'),),
+            "does not list wait, which the behaviour tree's recoveries call",
+            id="no-wait-behavior",
+        ),
+        pytest.param(
+            (('plugin: "nav2_behaviors/Spin"', 'plugin: "nav2_behaviors/Wait"'),),
+            "is nav2_behaviors::Wait, but the behaviour tree's recoveries call spin for "
+            "nav2_behaviors::Spin",
+            id="spin-as-wait",
+        ),
+        pytest.param(
+            (('plugin: "nav2_behaviors/AssistedTeleop"', 'plugin: "team_behaviors/Dance"'),),
+            "team_behaviors::Dance is a behavior the Nav2 imitation does not have",
+            id="unknown-behavior",
+        ),
+    ],
+)
+def test_a_setting_the_imitation_would_run_otherwise_than_nav2_is_an_error_at_its_line(
+    tmp_path: Path, edits: tuple[tuple[str, str], ...], problem: str
+) -> None:
+    husky = (REPO / "pytest_lasertest" / "robots" / "husky" / "nav2.yaml").read_text()
+    for old, new in edits:
+        assert husky.count(old) == 1
+        husky = husky.replace(old, new)
+    with pytest.raises(SpecError) as raised:
+        load(tmp_path, team=husky)
+    first = next(i for i, line in enumerate(husky.splitlines(), 1) if edits[0][1] in line)
+    assert raised.value.location.line == first
     assert problem in raised.value.problem
 
 

@@ -47,6 +47,10 @@ def read_controller_server(node: NodeParameters, settings: Nav2Settings) -> Nav2
         _check_period(node, frequency, settings.mppi.model_dt)
     progress = _checker(node, settings.release, "progress_checker", PROGRESS_CHECKER)
     goal = _checker(node, settings.release, "goal_checker", GOAL_CHECKER)
+    # The goal's heading, read and checked, acts on nothing: a route's goal has none
+    # (docs/explanation/navigation.md), as GoalAngleCritic is read and left out.
+    node.flag(f"{goal}.stateful", True)
+    node.number(f"{goal}.yaw_goal_tolerance", 0.25)
     return dataclasses.replace(
         settings,
         controller_frequency=frequency,
@@ -152,6 +156,7 @@ def _dwb(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
         for critic in DWB_CRITICS
         for leaf in _critic_leaves(field.name, critic)
     }
+    _check_lateral(node)
     dwb = node.fields("FollowPath.", CODE_DEFAULTS, renamed, exclude=("critics",))
     dwb = dataclasses.replace(dwb, critics=critics)
     poses = rollout_poses(dwb)
@@ -165,6 +170,27 @@ def _dwb(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
             "angular_granularity",
         )
     return dataclasses.replace(settings, dwb=dwb, prune_distance=dwb.prune_distance)
+
+
+def _check_lateral(node: NodeParameters) -> None:
+    """DWB's lateral limits, 0 by default (kinematic_parameters.cpp:75-96, vy_samples 5 at
+    xy_theta_iterator.cpp:58, at jazzy f4108e5b), where a differential drive's file sets them:
+    DWB samples lateral speeds between the limits as far as acc_lim_y and decel_lim_y reach
+    from the robot's 0 (projectVelocity, one_d_velocity_iterator.hpp), so they sample 0 alone
+    where the limits are both 0, or the accelerations are. Any other setting would roll out
+    sideways motion these robots cannot make."""
+    low = node.number("FollowPath.min_vel_y", 0.0)
+    high = node.number("FollowPath.max_vel_y", 0.0)
+    accel = node.number("FollowPath.acc_lim_y", 0.0)
+    decel = node.number("FollowPath.decel_lim_y", 0.0)
+    node.number("FollowPath.vy_samples", 5.0, whole=True)
+    if (low, high) != (0.0, 0.0) and (accel, decel) != (0.0, 0.0):
+        raise node.problem(
+            "FollowPath.max_vel_y",
+            f"DWB would sample lateral speeds from {low:g} to {high:g} m/s, which the "
+            "robots here (differential drives) cannot make",
+            "write min_vel_y: 0.0 and max_vel_y: 0.0",
+        )
 
 
 def _critic_leaves(field: str, critic: str) -> list[str]:

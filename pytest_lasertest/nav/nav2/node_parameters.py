@@ -45,7 +45,9 @@ MAY_BE_NEGATIVE = frozenset(
         "min_velocity",
         "max_decel",
         "min_vel_x",
+        "min_vel_y",
         "decel_lim_x",
+        "decel_lim_y",
         "decel_lim_theta",
         "lookahead_time",
         "unknown_cost_value",  # -1, as a map's int8 writes unknown, reads 255 as a byte

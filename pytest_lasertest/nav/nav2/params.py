@@ -172,6 +172,7 @@ def _velocity_smoother(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
         _check_signs(node, name, (x, y, theta))
         return x, theta
 
+    deadband_x, _, deadband_theta = node.numbers("deadband_velocity", (0.0, 0.0, 0.0))
     smoother = dataclasses.replace(
         s,
         smoothing_frequency=node.number("smoothing_frequency", s.smoothing_frequency),
@@ -179,8 +180,27 @@ def _velocity_smoother(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
         min_velocity=pair("min_velocity", s.min_velocity),
         max_accel=pair("max_accel", s.max_accel),
         max_decel=pair("max_decel", s.max_decel),
+        scale_velocities=node.flag("scale_velocities", s.scale_velocities),
+        deadband_velocity=(deadband_x, deadband_theta),
+        velocity_timeout=_velocity_timeout(node, s.velocity_timeout, settings),
     )
     return dataclasses.replace(settings, smoother=smoother)
+
+
+def _velocity_timeout(node: NodeParameters, default: float, settings: Nav2Settings) -> float:
+    """velocity_timeout, which must outlast the controller's cycle: the stacks here command
+    every cycle, and a smoother that times out between two of them brakes the robot to a stop
+    (smootherTimer, velocity_smoother.cpp:331-339 at jazzy f4108e5b), which is not imitated."""
+    timeout = node.number("velocity_timeout", default)
+    period = 1.0 / settings.controller_frequency  # s
+    if timeout <= period:
+        raise node.problem(
+            "velocity_timeout",
+            f"{timeout:g} s is no longer than the controller's cycle ({period:g} s): Nav2's "
+            "smoother would brake the robot between commands, which the imitation does not do",
+            f"write a velocity_timeout above {period:g} s (Nav2's default is 1.0)",
+        )
+    return timeout
 
 
 # The sign each of the smoother's limits must have, or it fails to configure
@@ -286,9 +306,53 @@ def _check_type(
     raise node.problem(name, why, f"write {imitated}")
 
 
+# The behaviour server's plugins when the file lists none (BehaviorServer's default_ids_ and
+# default_types_, behavior_server.cpp:28-32 at jazzy f4108e5b), and the types it may load.
+DEFAULT_BEHAVIORS = {
+    "spin": "nav2_behaviors::Spin",
+    "backup": "nav2_behaviors::BackUp",
+    "drive_on_heading": "nav2_behaviors::DriveOnHeading",
+    "wait": "nav2_behaviors::Wait",
+}
+BEHAVIOR_TYPES = (*DEFAULT_BEHAVIORS.values(), "nav2_behaviors::AssistedTeleop")
+# The action servers the default behaviour tree's recoveries call, each the plugin of that name
+# (navigate_to_pose_w_replanning_and_recovery.xml: Spin, Wait and BackUp, by their default
+# server names): what the imitation runs.
+RECOVERY_BEHAVIORS = ("spin", "backup", "wait")
+
+
 def _behavior_server(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
-    """The behaviour server's rate, its look ahead for collisions and Spin's speeds."""
+    """The behaviour server's rate, its look ahead for collisions and Spin's speeds; its plugins
+    (`_check_behaviors`); transform_tolerance, which acts on nothing here (the simulator's
+    transforms are never late)."""
+    _check_behaviors(node)
+    node.number("transform_tolerance", 0.1)
     return dataclasses.replace(settings, behaviors=node.fields("", settings.behaviors))
+
+
+def _check_behaviors(node: NodeParameters) -> None:
+    """behavior_plugins, each of a type the server loads, serving the recoveries the behaviour
+    tree calls by name with the plugins the imitation runs."""
+    listed = node.names("behavior_plugins", tuple(DEFAULT_BEHAVIORS))
+    defaults = DEFAULT_BEHAVIORS if listed == tuple(DEFAULT_BEHAVIORS) else {}
+    kinds = {
+        name: node.plugin(name, BEHAVIOR_TYPES, "behavior", defaults.get(name)) for name in listed
+    }
+    for name in RECOVERY_BEHAVIORS:
+        wanted = DEFAULT_BEHAVIORS[name]
+        if name not in kinds:
+            raise node.problem(
+                "behavior_plugins",
+                f"does not list {name}, which the behaviour tree's recoveries call: Nav2's "
+                "recovery would fail at once",
+                f"add {name} (plugin {wanted}) to behavior_plugins",
+            )
+        if kinds[name] != wanted:
+            raise node.problem(
+                f"{name}.plugin",
+                f"is {kinds[name]}, but the behaviour tree's recoveries call {name} for {wanted}",
+                f"write {name}.plugin: {wanted}",
+            )
 
 
 READERS = {
