@@ -169,10 +169,10 @@ def _velocity_smoother(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
 
     def pair(name: str, default: tuple[float, float]) -> tuple[float, float]:
         x, y, theta = node.numbers(name, (default[0], 0.0, default[1]))
-        _check_signs(node, name, (x, y, theta))
+        if name in _SMOOTHER_SIGNS:  # Nav2 checks no deadband's sign
+            _check_signs(node, name, (x, y, theta))
         return x, theta
 
-    deadband_x, _, deadband_theta = node.numbers("deadband_velocity", (0.0, 0.0, 0.0))
     smoother = dataclasses.replace(
         s,
         smoothing_frequency=node.number("smoothing_frequency", s.smoothing_frequency),
@@ -181,7 +181,7 @@ def _velocity_smoother(node: NodeParameters, settings: Nav2Settings) -> Nav2Sett
         max_accel=pair("max_accel", s.max_accel),
         max_decel=pair("max_decel", s.max_decel),
         scale_velocities=node.flag("scale_velocities", s.scale_velocities),
-        deadband_velocity=(deadband_x, deadband_theta),
+        deadband_velocity=pair("deadband_velocity", s.deadband_velocity),
         velocity_timeout=_velocity_timeout(node, s.velocity_timeout, settings),
     )
     return dataclasses.replace(settings, smoother=smoother)
