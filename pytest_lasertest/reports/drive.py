@@ -4,6 +4,7 @@ and the run's summary take from it, as plain values that cross to the pytest-xdi
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 from pytest_lasertest.inputs.errors import display_path
@@ -36,9 +37,10 @@ def drive_report(
     details: list[str],
     policy: Policy,
     replay: Replay,
+    blame: Sequence[str] = (),
 ) -> str:
-    """A failing drive: what failed, the controller, what happened to each robot, and how to
-    replay it."""
+    """A failing drive: what failed, the controller, what happened to each robot (and, for a
+    regression, what it comes from: `blame`), and how to replay it."""
     lines = [
         headline,
         f"  pair       {pair.name} ({pair.location})",
@@ -48,6 +50,7 @@ def drive_report(
         run_line("baseline", pair.baseline.label, drives.baseline),
         run_line("candidate", pair.candidate.label, drives.candidate),
         *redrive_lines(drives),
+        *blame,
         f"  policy     {policy}",
         replay.line(),
     ]

@@ -36,7 +36,7 @@ from pytest_lasertest.reports.drive import (
     run_properties,
 )
 from pytest_lasertest.reports.formats import Artifacts, Replay, pose_text, run_line, shell_word
-from pytest_lasertest.search.blame import ChainTried, TraitTried, blame_text, chain_text
+from pytest_lasertest.search.blame import ChainTried, TraitTried, blame_lines
 from pytest_lasertest.search.offsets import AXES, OffsetBox
 from pytest_lasertest.search.trials import TrialResult, Trials
 
@@ -100,8 +100,7 @@ def failure_report(failure: PlacementFailure, replay: Replay, artifacts: Artifac
         run_line("baseline", pair.baseline.label, result.baseline),
         run_line("candidate", pair.candidate.label, result.candidate),
         *(redrive_lines(result.drive) if result.drive is not None else []),
-        *([f"  driver     {blame_text(failure.driver_tried)}"] if failure.driver_tried else []),
-        *([f"  filters    {chain_text(failure.chain_tried)}"] if failure.chain_tried else []),
+        *blame_lines(failure.driver_tried, failure.chain_tried),
         search_line(trials, failure.box),
         *(f"  hypothesis {note}" for note in failure.notes),
         f"  policy     {trials.policy}",

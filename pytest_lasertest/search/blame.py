@@ -15,7 +15,7 @@ import dataclasses
 from dataclasses import dataclass
 
 from pytest_lasertest.model.driver import differences
-from pytest_lasertest.model.verify import Placement
+from pytest_lasertest.model.obstacles import Obstacle
 from pytest_lasertest.pairsfile.scan_filters import without_scan_filters
 from pytest_lasertest.search.trials import Setting
 
@@ -29,16 +29,24 @@ class TraitTried:
     passes: bool  # whether the candidate then passes
 
 
-def blame_driver(setting: Setting, placement: Placement) -> tuple[TraitTried, ...]:
-    """Each trait in which the pair's drivers differ, tried alone at `placement`."""
+def blame_driver(setting: Setting, obstacle: Obstacle) -> tuple[TraitTried, ...]:
+    """Each trait in which the pair's drivers differ, tried alone past `obstacle`."""
     baseline, candidate = setting.pair.baseline.profile, setting.pair.candidate.profile
     tried = []
     for trait, _ in differences(baseline.driver, candidate.driver):
         value = getattr(baseline.driver, trait)
         driver = dataclasses.replace(candidate.driver, **{trait: value})
-        run = setting.drive(dataclasses.replace(candidate, driver=driver), placement)
+        run = setting.drive_past(dataclasses.replace(candidate, driver=driver), obstacle)
         tried.append(TraitTried(trait, value, run.passed))
     return tuple(tried)
+
+
+def blame_lines(driver: tuple[TraitTried, ...], chain: ChainTried | None) -> list[str]:
+    """A failure report's `driver` and `filters` lines, for what was tried."""
+    return [
+        *([f"  driver     {blame_text(driver)}"] if driver else []),
+        *([f"  filters    {chain_text(chain)}"] if chain else []),
+    ]
 
 
 def blame_text(tried: tuple[TraitTried, ...]) -> str:
@@ -63,13 +71,13 @@ class ChainTried:
     passes: bool  # whether the candidate then passes
 
 
-def blame_chain(setting: Setting, placement: Placement) -> ChainTried | None:
-    """The candidate driven at `placement` straight into the stack; None without a chain."""
+def blame_chain(setting: Setting, obstacle: Obstacle) -> ChainTried | None:
+    """The candidate driven past `obstacle` straight into the stack; None without a chain."""
     chain = setting.controller.scan_filters
     if chain is None:
         return None
     bare = dataclasses.replace(setting, controller=without_scan_filters(setting.controller))
-    run = bare.drive(setting.pair.candidate.profile, placement)
+    run = bare.drive_past(setting.pair.candidate.profile, obstacle)
     return ChainTried(chain.file, run.passed)
 
 

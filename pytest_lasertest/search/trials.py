@@ -17,6 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from pytest_lasertest.model.draws import Draw
+from pytest_lasertest.model.obstacles import Obstacle
 from pytest_lasertest.model.policy import Classification, Policy, fails
 from pytest_lasertest.model.sensor import LaserProfile
 from pytest_lasertest.model.verify import Placement, Scene, Verification, verify
@@ -100,7 +101,14 @@ class Setting:
 
     def drive(self, profile: LaserProfile, placement: Placement, draw: Draw | None = None) -> Run:
         """The run of `scenario`, through the session's cache."""
-        world = self.scenario(profile, placement, draw)
+        return self.drive_past(profile, placement.obstacle, draw)
+
+    def drive_past(
+        self, profile: LaserProfile, obstacle: Obstacle, draw: Draw | None = None
+    ) -> Run:
+        """One robot past `obstacle` alone (a placement's, or a pinned one), as `scenario` says,
+        through the session's cache."""
+        world = scenario(self.spec, profile, (obstacle,), self.seed, draw)
         return self.cache.run(world, self.controller, self.client)
 
 

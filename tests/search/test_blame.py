@@ -82,9 +82,9 @@ def test_a_chain_that_blinds_the_stack_is_blamed_and_a_stack_that_never_moves_is
     with PhysicsClient() as client:
         blinded = Setting(PAPER, PAIR, with_scan_filters(REACTIVE, chain), 1, client, RunCache())
         assert not blinded.drive(PAIR.candidate.profile, placement).passed
-        assert blame_chain(blinded, placement) == ChainTried("filters.yaml", passes=True)
+        assert blame_chain(blinded, placement.obstacle) == ChainTried("filters.yaml", passes=True)
         standing = Setting(PAPER, PAIR, with_scan_filters(STILL, chain), 1, client, RunCache())
-        assert blame_chain(standing, placement) == ChainTried("filters.yaml", passes=False)
+        assert blame_chain(standing, placement.obstacle) == ChainTried("filters.yaml", passes=False)
 
 
 def test_without_a_chain_nothing_is_tried() -> None:

@@ -8,12 +8,13 @@ yields nothing else: no coverage check, no solving, no search.
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 from typing import Any
 
 import pytest
 
-from pytest_lasertest.model.policy import CANDIDATE_FAILED
+from pytest_lasertest.model.policy import CANDIDATE_FAILED, Classification
 from pytest_lasertest.model.verify import DETECTED_BY
 from pytest_lasertest.pairsfile import Pair, PairsFile
 from pytest_lasertest.pairsfile.controller import ControllerChoice
@@ -21,6 +22,7 @@ from pytest_lasertest.pairsfile.placements import PinnedPlacement
 from pytest_lasertest.plugin.items.base import PairItem
 from pytest_lasertest.reports.drive import MEANINGS, drive_properties, drive_report
 from pytest_lasertest.reports.formats import Artifacts
+from pytest_lasertest.search.blame import blame_chain, blame_driver, blame_lines
 from pytest_lasertest.search.drives import drive_pair
 
 
@@ -60,8 +62,19 @@ class PinnedItem(PairItem):
                 self._details(),
                 self.options.policy,
                 self.replay,
+                self._blame(classification),
             )
             raise self.failure(classification, report, Artifacts())
+
+    def _blame(self, classification: Classification) -> list[str]:
+        """A regression's `driver` and `filters` lines: the candidate driven again past the
+        pinned obstacle, with its pinned noise, one driver trait or the chain changed back."""
+        if classification != "regression":
+            return []
+        setting = self.lasertest.setting(self.spec, self.pair, self.controller)
+        setting = dataclasses.replace(setting, seed=self.pinned.seed)
+        obstacle = self.pinned.obstacle
+        return blame_lines(blame_driver(setting, obstacle), blame_chain(setting, obstacle))
 
     def _details(self) -> list[str]:
         pinned = self.pinned

@@ -141,7 +141,8 @@ class SearchItem(PairItem):
         if result.classification != "regression":
             return (), None
         setting = self.lasertest.setting(self.spec, self.pair, self.controller)
-        return blame_driver(setting, result.placement), blame_chain(setting, result.placement)
+        obstacle = result.placement.obstacle
+        return blame_driver(setting, obstacle), blame_chain(setting, obstacle)
 
     def _reject(self, witness: Witness, verification: Verification) -> None:
         """Fail the item with the witness the solver should not have returned."""
