@@ -486,8 +486,13 @@ def _doorway(tmp_path: Path, old: str = "", new: str = "", pixels: Pixels | None
         (tmp_path / name).write_bytes((WORLDS / name).read_bytes())
     pairs = tmp_path / "doorway.lasertest.yaml"
     pairs.write_text(pairs.read_text().replace(old, new))
-    if pixels is not None:
+    if pixels is not None and np.ndim(pixels) == 2:
         Image.fromarray(np.array(pixels, dtype=np.uint8)).save(tmp_path / "doorway.pgm")
+    elif pixels is not None:
+        # A PGM holds grey alone: pixels with colour or alpha go into a PNG the map names.
+        Image.fromarray(np.array(pixels, dtype=np.uint8)).save(tmp_path / "doorway.png")
+        map_file = tmp_path / "doorway.yaml"
+        map_file.write_text(map_file.read_text().replace("doorway.pgm", "doorway.png"))
     return pairs
 
 
@@ -500,8 +505,14 @@ UNKNOWN_GREY = 205  # map_saver's unknown
         ("goal: {x: 8.5, y: 3.8}", "goal: {x: 28.5, y: 3.8}", None, 11, "(28.5, 3.8)"),
         ("", "", [[WHITE]], 10, "(1.5, 1.2)"),
         ("", "", np.full((120, 200), UNKNOWN_GREY), 10, "(1.5, 1.2)"),
+        ("", "", np.full((100, 200, 4), [WHITE, WHITE, WHITE, 0]), 10, "(1.5, 1.2)"),
     ],
-    ids=["goal-20-m-off-the-map", "a-one-cell-map", "an-all-unknown-map"],
+    ids=[
+        "goal-20-m-off-the-map",
+        "a-one-cell-map",
+        "an-all-unknown-map",
+        "a-fully-transparent-png",
+    ],
 )
 def test_a_start_or_goal_the_map_does_not_know_is_an_error_at_its_line(
     tmp_path: Path, old: str, new: str, pixels: Pixels | None, line: int, point: str
