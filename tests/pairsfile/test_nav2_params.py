@@ -397,6 +397,23 @@ CASES = {
         "reaches 2000.01 m from the robot's origin",
         "within 20 m of its origin",
     ),
+    "a footprint whose edges cross (a bow tie)": Case(
+        '"[[0.55, 0.45], [0.55, -0.45], [-0.55, -0.45], [-0.55, 0.45]]"',
+        '"[[0.55, 0.45], [-0.55, -0.45], [0.55, -0.45], [-0.55, 0.45]]"',
+        16,
+        "local_costmap.local_costmap.ros__parameters.footprint",
+        "has edges that cross each other, from (0.55, 0.45) to (-0.55, -0.45) and from "
+        "(0.55, -0.45) to (-0.55, 0.45): it outlines no body",
+        "list the corners in order round the robot",
+    ),
+    "a footprint of more corners than costmaps test": Case(
+        '"[[0.55, 0.45], [0.55, -0.45], [-0.55, -0.45], [-0.55, 0.45]]"',
+        '"[' + ", ".join(["[0.5, 0.0]"] * 101) + ']"',
+        16,
+        "local_costmap.local_costmap.ros__parameters.footprint",
+        "has 101 corners, more than the 100 the gate accepts",
+        "give the robot's outline with fewer corners",
+    ),
     "a robot_radius of a kilometre": Case(
         '      footprint: "[[0.55, 0.45], [0.55, -0.45], [-0.55, -0.45], [-0.55, 0.45]]"',
         "      robot_radius: 1000",
