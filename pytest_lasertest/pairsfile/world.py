@@ -66,6 +66,8 @@ YAW = Bounds(
 )
 # The simulator counts a robot within this of the goal as arrived (`sim/oracles.py`, Rules).
 GOAL_TOLERANCE = 0.2  # m
+# The sources of walls besides a map, in the order they are added to it.
+LISTED_SOURCES = (("walls", read_walls), ("sdf", read_sdf_walls))
 
 
 @dataclass(frozen=True)
@@ -120,31 +122,55 @@ def read_world(node: SpecNode, robot: Robot) -> World:
 
 
 def _walls(fields: dict[str, SpecNode], driven: tuple[tuple[float, float], ...]) -> Walls:
-    """The walls of the world's map, those it lists and those of its SDF world; the map of
-    listed and SDF walls covers them and the points `driven` (m), the start and waypoints."""
-    listed = read_walls(fields["walls"]) if "walls" in fields else ()
-    if "sdf" in fields:
-        listed += read_sdf_walls(fields["sdf"])
-    if "map" in fields:
-        return Walls.mapped(read_map(fields["map"]), listed)
-    if listed:
-        _check_walls_extent(listed, driven, fields.get("walls", fields.get("sdf")))
+    """The walls of the world's map, those it lists and those of its SDF world, each source
+    bounded together with those before it, at its own line; the map of listed and SDF walls
+    covers them and the points `driven` (m), the start and waypoints."""
+    grid = read_map(fields["map"]) if "map" in fields else None
+    listed: tuple[Box, ...] = ()
+    for key, read in LISTED_SOURCES:
+        if key in fields:
+            listed += read(fields[key])
+            _check_walls_extent(grid, listed, driven, fields[key])
+    if grid is not None:
+        return Walls.mapped(grid, listed)
     return Walls.listed(listed, driven)
 
 
 def _check_walls_extent(
-    walls: tuple[Box, ...], driven: tuple[tuple[float, float], ...], node: SpecNode | None
+    grid: OccupancyGrid | None,
+    walls: tuple[Box, ...],
+    driven: tuple[tuple[float, float], ...],
+    node: SpecNode,
 ) -> None:
-    """Refuse walls spread wider than a map of them may be: they are drawn into one at
-    MAP_RESOLUTION, and walls kilometres apart would make one of billions of cells."""
-    corners = np.array([*(corner for wall in walls for corner in wall.corners()), *driven])
-    width, height = corners.max(axis=0) - corners.min(axis=0) + 2.0 * MAP_MARGIN
-    if max(width, height) > MAX_MAP_EXTENT and node is not None:
+    """Refuse walls spread wider than a map may be. Without a map they are drawn into one at
+    MAP_RESOLUTION, its margin round them and the route, and walls kilometres apart would make
+    one of billions of cells; with one, the world is held to the map's own bound (the route
+    keeps to the map's known cells, `_check_on_map`)."""
+    corners = np.array([corner for wall in walls for corner in wall.corners()]).reshape(-1, 2)
+    if grid is None:
+        width, height = _spread(np.vstack([corners, *driven]), MAP_MARGIN)
+        what, bound, where = "the walls and the route", "the gate draws into a map", ""
+    else:
+        width, height = _spread(np.vstack([corners, *_map_corners(grid)]), 0.0)
+        what, bound, where = "the map and its walls", "a map may span", ", on the map"
+    if max(width, height) > MAX_MAP_EXTENT:
         raise node.error(
-            f"the walls and the route spread over {width:g} x {height:g} m, wider than the "
-            f"{MAX_MAP_EXTENT:g} m a side the gate draws into a map",
-            "keep the walls of the part the robot drives through",
+            f"{what} spread over {width:g} x {height:g} m, wider than the {MAX_MAP_EXTENT:g} m "
+            f"a side {bound}",
+            f"keep the walls of the part the robot drives through{where}",
         )
+
+
+def _spread(points: FloatArray, margin: float) -> tuple[float, float]:
+    """How far the points, shape (P, 2), spread along x and along y (m), `margin` round them."""
+    width, height = points.max(axis=0) - points.min(axis=0) + 2.0 * margin
+    return float(width), float(height)
+
+
+def _map_corners(grid: OccupancyGrid) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The map's lower left and upper right corners (m)."""
+    (low_x, low_y), side = grid.origin, grid.resolution
+    return (low_x, low_y), (low_x + grid.width * side, low_y + grid.height * side)
 
 
 def _check_ends(
@@ -180,9 +206,8 @@ def _check_on_map(grid: OccupancyGrid, points: list[tuple[SpecNode, Point2D]]) -
     for node, point in points:
         if grid.values_at(np.array([[point.x, point.y]]))[0] != UNKNOWN:
             continue
-        (low_x, low_y), side = grid.origin, grid.resolution
-        span = f"x {low_x:g} to {low_x + grid.width * side:g} m, y {low_y:g} to "
-        span += f"{low_y + grid.height * side:g} m"
+        (low_x, low_y), (high_x, high_y) = _map_corners(grid)
+        span = f"x {low_x:g} to {high_x:g} m, y {low_y:g} to {high_y:g} m"
         raise node.error(
             f"({point.x:g}, {point.y:g}) lies off the map or on a cell it leaves unknown (the "
             f"map spans {span}): Nav2's and move_base's planners would not plan there",

@@ -548,10 +548,8 @@ def test_a_speckled_map_of_more_wall_boxes_than_the_simulator_steps_is_an_error(
     assert "clean the map of its speckle" in raised.value.fix
 
 
-def test_walls_kilometres_apart_are_an_error_at_the_walls_line(tmp_path: Path) -> None:
-    from pytest_lasertest.pairsfile import load_pairs_file
-
-    far = """\
+FAR_WALL = "{x: 9000.0, y: -9000.0, length: 2.0, width: 0.2, height: 2.0}"
+FAR = """\
 robot: husky
 world:
   start: {x: 0.0, y: 0.0, yaw: 0.0}
@@ -563,13 +561,39 @@ world:
 pairs:
   same: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
 """
+
+
+@pytest.mark.parametrize(
+    ("world", "line", "problem"),
+    [
+        (
+            lambda tmp_path: write(tmp_path, FAR),
+            6,
+            "the walls and the route spread over 9004 x 9005.2 m, wider than the 200 m a side "
+            "the gate draws into a map",
+        ),
+        # The doorway's map spans x 0 to 10 m, y 0 to 5 m.
+        (
+            lambda tmp_path: _doorway(
+                tmp_path, "  time_limit", f"  walls: [{FAR_WALL}]\n  time_limit"
+            ),
+            12,
+            "the map and its walls spread over 9001 x 9005.1 m, wider than the 200 m a side a "
+            "map may span",
+        ),
+    ],
+    ids=["listed-walls", "a-map-and-listed-walls"],
+)
+def test_walls_kilometres_apart_are_an_error_at_the_walls_line(
+    tmp_path: Path, world: Callable[[Path], Path], line: int, problem: str
+) -> None:
+    from pytest_lasertest.pairsfile import load_pairs_file
+
     with pytest.raises(SpecError) as raised:
-        load_pairs_file(write(tmp_path, far))
-    assert raised.value.location.line == 6
-    assert (
-        "the walls and the route spread over 9004 x 9005.2 m, wider than the 200 m"
-        in raised.value.problem
-    )
+        load_pairs_file(world(tmp_path))
+    assert raised.value.location.line == line
+    assert problem in raised.value.problem
+    assert "keep the walls of the part the robot drives through" in raised.value.fix
 
 
 def test_five_hundred_walls_are_drawn_into_a_map_of_16_million_cells(
