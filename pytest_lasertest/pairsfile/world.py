@@ -21,14 +21,14 @@ from pytest_lasertest.model.obstacles import Box, polygon_clearance
 from pytest_lasertest.model.occupancy import UNKNOWN, OccupancyGrid
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import Leg, NominalPath, nominal_path, place, swept_polygons
-from pytest_lasertest.model.walls import MAP_MARGIN, NO_WALLS, Walls
+from pytest_lasertest.model.walls import MAP_MARGIN, NO_WALLS, WALL_HEIGHT, Walls
 from pytest_lasertest.nav.move_base.settings import (
     NavigationSettings,
     costmap_cells,
     global_costmap_size,
 )
 from pytest_lasertest.nav.waypoints import CLEARANCE, plan_route
-from pytest_lasertest.pairsfile.maps import MAX_MAP_EXTENT, read_map
+from pytest_lasertest.pairsfile.maps import MAX_MAP_EXTENT, MAX_MAP_WALLS, read_map
 from pytest_lasertest.pairsfile.sdf_world import read_sdf_walls
 from pytest_lasertest.pairsfile.walls import read_walls
 
@@ -66,8 +66,15 @@ YAW = Bounds(
 )
 # The simulator counts a robot within this of the goal as arrived (`sim/oracles.py`, Rules).
 GOAL_TOLERANCE = 0.2  # m
-# The sources of walls besides a map, in the order they are added to it.
-LISTED_SOURCES = (("walls", read_walls), ("sdf", read_sdf_walls))
+# The simulator steps every wall box and casts every scan against it, whichever source gives
+# it: a map's bound holds for the world's walls together.
+MAX_WORLD_WALLS = MAX_MAP_WALLS
+# The sources of walls besides a map, in the order they are added to its boxes, each with the
+# words for one of its walls and for several.
+LISTED_SOURCES = (
+    ("walls", read_walls, ("listed wall", "listed walls")),
+    ("sdf", read_sdf_walls, ("static box of the SDF world", "static boxes of the SDF world")),
+)
 
 
 @dataclass(frozen=True)
@@ -126,14 +133,41 @@ def _walls(fields: dict[str, SpecNode], driven: tuple[tuple[float, float], ...])
     bounded together with those before it, at its own line; the map of listed and SDF walls
     covers them and the points `driven` (m), the start and waypoints."""
     grid = read_map(fields["map"]) if "map" in fields else None
+    counts = [] if grid is None else [_map_count(grid)]
     listed: tuple[Box, ...] = ()
-    for key, read in LISTED_SOURCES:
+    for key, read, (one, several) in LISTED_SOURCES:
         if key in fields:
-            listed += read(fields[key])
+            boxes = read(fields[key])
+            words = one if len(boxes) == 1 else several
+            counts.append((len(boxes), f"the {len(boxes):,} {words}"))
+            _check_wall_count(counts, fields[key])
+            listed += boxes
             _check_walls_extent(grid, listed, driven, fields[key])
     if grid is not None:
         return Walls.mapped(grid, listed)
     return Walls.listed(listed, driven)
+
+
+def _map_count(grid: OccupancyGrid) -> tuple[int, str]:
+    count = len(grid.wall_boxes(WALL_HEIGHT))
+    return count, f"the map's {count:,} wall boxes"
+
+
+def _check_wall_count(counts: list[tuple[int, str]], node: SpecNode) -> None:
+    """Refuse walls that, with those of the sources before them (`counts`, each with its
+    words, this source's last), make more boxes than the simulator steps: each source's own
+    bound lets a map's 5,000 boxes take 1,000 listed and SDF walls more."""
+    total = sum(count for count, _ in counts)
+    if total <= MAX_WORLD_WALLS:
+        return
+    *earlier, last = (what for _, what in counts)
+    named = f"{', '.join(earlier)} and {last}" if earlier else last
+    raise node.error(
+        f"{named} make {total:,} wall boxes, more than the "
+        f"{MAX_WORLD_WALLS:,} the simulator steps and casts every scan against",
+        "clean the map of its speckle (isolated occupied cells), merge walls that meet in a "
+        "line into one, or draw the listed walls into the map",
+    )
 
 
 def _check_walls_extent(

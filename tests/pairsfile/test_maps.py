@@ -596,6 +596,70 @@ def test_walls_kilometres_apart_are_an_error_at_the_walls_line(
     assert "keep the walls of the part the robot drives through" in raised.value.fix
 
 
+TWO_WALLS = (
+    "  walls:\n"
+    "    - {x: 2.0, y: 4.0, length: 1.0, width: 0.2, height: 2.0}\n"
+    "    - {x: 8.0, y: 1.0, length: 1.0, width: 0.2, height: 2.0}\n"
+)
+# An SDF world of three static crates, each a box.
+CRATES = """\
+<?xml version="1.0"?>
+<sdf version="1.7">
+  <world name="default">
+    <model name="crates">
+      <static>true</static>
+      <link name="a"><pose>2 2.5 0.5 0 0 0</pose><collision name="collision">
+        <geometry><box><size>0.4 0.4 1</size></box></geometry></collision></link>
+      <link name="b"><pose>3 2.5 0.5 0 0 0</pose><collision name="collision">
+        <geometry><box><size>0.4 0.4 1</size></box></geometry></collision></link>
+      <link name="c"><pose>7 2.5 0.5 0 0 0</pose><collision name="collision">
+        <geometry><box><size>0.4 0.4 1</size></box></geometry></collision></link>
+    </model>
+  </world>
+</sdf>
+"""
+
+
+@pytest.mark.parametrize(
+    ("lone_cells", "sdf", "line", "problem"),
+    [
+        (
+            5_000,
+            "",
+            12,
+            "the map's 5,000 wall boxes and the 2 listed walls make 5,002 wall boxes",
+        ),
+        (
+            4_998,
+            "  sdf: crates.world\n",
+            15,
+            "the map's 4,998 wall boxes, the 2 listed walls and the 3 static boxes of the SDF "
+            "world make 5,003 wall boxes",
+        ),
+    ],
+    ids=["listed-walls", "an-sdf-world-after-them"],
+)
+def test_walls_that_take_a_maps_boxes_past_what_the_simulator_steps_are_an_error_at_their_line(
+    tmp_path: Path, lone_cells: int, sdf: str, line: int, problem: str
+) -> None:
+    # Each source alone is within its bound: the map's 5,000 boxes, 500 listed, 500 in SDF.
+    from pytest_lasertest.pairsfile import load_pairs_file
+
+    dots = np.full((100, 200), WHITE)
+    dots[::2, ::2] = BLACK  # 5,000 lone occupied cells, each a box of its own
+    dots[0, : 2 * (5_000 - lone_cells) : 2] = WHITE
+    (tmp_path / "crates.world").write_text(CRATES)
+    pairs = _doorway(tmp_path, "  time_limit", f"{TWO_WALLS}{sdf}  time_limit", dots)
+    with pytest.raises(SpecError) as raised:
+        load_pairs_file(pairs)
+    assert raised.value.location.line == line
+    assert problem in raised.value.problem
+    assert "more than the 5,000 the simulator steps and casts every scan against" in (
+        raised.value.problem
+    )
+    assert "clean the map of its speckle" in raised.value.fix
+
+
 def test_five_hundred_walls_are_drawn_into_a_map_of_16_million_cells(
     tmp_path: Path,
 ) -> None:
