@@ -693,7 +693,11 @@ def test_a_yaml_alias_is_refused_at_its_line_as_ros_2_refuses_it(tmp_path: Path)
             "smoothing_frequency: 1.0e+9, max_decel: [-2.5, 0.0, -3.2]",
             "beyond any navigation",
         ),
-        ("batch_size: 1000", "batch_size: " + "9" * 401, "is beyond any Nav2 configuration"),
+        (
+            "batch_size: 1000",
+            "batch_size: " + "9" * 401,
+            "9999... (401 digits) is beyond any Nav2 configuration",
+        ),
         (
             "max_decel: [-2.5, 0.0, -3.2]",
             "max_decel: [-.inf, 0.0, -3.2]",
