@@ -19,7 +19,7 @@ from pytest_lasertest.model.occupancy import FREE, OCCUPIED, UNKNOWN, OccupancyG
 from pytest_lasertest.pairsfile.maps import read_map
 from tests.helpers import WORLDS
 from tests.helpers.runs import Case, assert_spec_error
-from tests.helpers.texts import write
+from tests.helpers.texts import WALL_BESIDE_THE_GOAL, write
 
 # Line numbers matter: the cases below break one line of each.
 PAIRS = """\
@@ -549,18 +549,9 @@ def test_a_speckled_map_of_more_wall_boxes_than_the_simulator_steps_is_an_error(
 
 
 FAR_WALL = "{x: 9000.0, y: -9000.0, length: 2.0, width: 0.2, height: 2.0}"
-FAR = """\
-robot: husky
-world:
-  start: {x: 0.0, y: 0.0, yaw: 0.0}
-  goal: {x: 5.0, y: 0.0}
-  time_limit: 60.0
-  walls:
-    - {x: 0.0, y: 3.0, length: 2.0, width: 0.2, height: 2.0}
-    - {x: 9000.0, y: -9000.0, length: 2.0, width: 0.2, height: 2.0}
-pairs:
-  same: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
-"""
+BESIDE = "    - {x: 6.0, y: 4.0, length: 2.0, width: 0.2, height: 2.0}\n"
+# The wall beside the goal, and one 9 km off.
+FAR = WALL_BESIDE_THE_GOAL.replace(BESIDE, f"{BESIDE}    - {FAR_WALL}\n")
 
 
 @pytest.mark.parametrize(
@@ -568,8 +559,8 @@ pairs:
     [
         (
             lambda tmp_path: write(tmp_path, FAR),
-            6,
-            "the walls and the route spread over 9004 x 9005.2 m, wider than the 200 m a side "
+            7,
+            "the walls and the route spread over 9003 x 9006.2 m, wider than the 200 m a side "
             "the gate draws into a map",
         ),
         # The doorway's map spans x 0 to 10 m, y 0 to 5 m.
@@ -589,6 +580,7 @@ def test_walls_kilometres_apart_are_an_error_at_the_walls_line(
 ) -> None:
     from pytest_lasertest.pairsfile import load_pairs_file
 
+    assert FAR_WALL in FAR
     with pytest.raises(SpecError) as raised:
         load_pairs_file(world(tmp_path))
     assert raised.value.location.line == line
@@ -675,24 +667,13 @@ def test_five_hundred_walls_are_drawn_into_a_map_of_16_million_cells(
 
 
 def test_the_map_drawn_of_listed_walls_covers_the_start_and_the_route(tmp_path: Path) -> None:
-    # One wall 4 m beside the goal: drawn round the wall alone, the map left the start and the
-    # goal off it, unknown space to the stacks, and the Jackal circled its goal.
     from pytest_lasertest.model.occupancy import FREE
     from pytest_lasertest.pairsfile import load_pairs_file
 
-    beside = """\
-robot: jackal
-world:
-  start: {x: 0.0, y: 0.0, yaw: 0.0}
-  route:
-    - {x: 3.0, y: -2.0}
-    - {x: 6.0, y: 0.0}
-  time_limit: 60.0
-  walls:
-    - {x: 6.0, y: 4.0, length: 2.0, width: 0.2, height: 2.0}
-pairs:
-  same: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
-"""
+    goal = "  goal: {x: 6.0, y: 0.0}\n"
+    assert goal in WALL_BESIDE_THE_GOAL
+    route = "  route:\n    - {x: 3.0, y: -2.0}\n    - {x: 6.0, y: 0.0}\n"
+    beside = WALL_BESIDE_THE_GOAL.replace(goal, route)
     grid = load_pairs_file(write(tmp_path, beside)).world.walls.grid
     assert grid is not None
     driven = np.array([[0.0, 0.0], [3.0, -2.0], [6.0, 0.0], [-0.9, -2.9], [6.9, 0.9]])

@@ -16,6 +16,7 @@ from pytest_lasertest.search.drives import PairDrive, RunCache, drive_pair
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Run
 from tests.helpers import WORLDS
+from tests.helpers.texts import WALL_BESIDE_THE_GOAL
 
 DOORWAY = WORLDS / "doorway.lasertest.yaml"
 # The wall between the rooms stands at x = 5 m (0.1 m thick); its doorway spans y 1.9-3.1 m.
@@ -60,25 +61,9 @@ def test_the_doorway_examples_control_run_passes_with_the_old_and_the_new_scanne
     assert drive.candidate.passed, drive.candidate.verdicts.failures()
 
 
-BESIDE_THE_GOAL = """\
-robot: jackal
-controller: nav2
-world:
-  start: {x: 0.0, y: 0.0, yaw: 0.0}
-  goal: {x: 6.0, y: 0.0}
-  time_limit: 60.0
-  walls:
-    - {x: 6.0, y: 4.0, length: 2.0, width: 0.2, height: 2.0}
-pairs:
-  longer: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
-"""
-
-
 def test_the_jackal_under_nav2_reaches_a_goal_with_one_wall_beside_it(
     pytester: pytest.Pytester,
 ) -> None:
-    # The map drawn round the wall alone left the start and the goal off it, unknown space to
-    # Nav2's static layer, and the Jackal circled its goal until the time ran out.
-    (pytester.path / "gate.lasertest.yaml").write_text(BESIDE_THE_GOAL)
+    (pytester.path / "gate.lasertest.yaml").write_text(WALL_BESIDE_THE_GOAL)
     result = pytester.runpytest("-k", "no-obstacle", "--laser-seed=1")
     result.assert_outcomes(passed=1, deselected=result.parseoutcomes()["deselected"])
