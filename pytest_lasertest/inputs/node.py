@@ -11,6 +11,7 @@ from pathlib import Path
 
 from pytest_lasertest.inputs.errors import Location, SpecError
 from pytest_lasertest.inputs.yamlfile import YamlList, YamlMap, load_yaml
+from pytest_lasertest.model.figures import shown
 
 
 @dataclass(frozen=True)
@@ -180,17 +181,6 @@ class Bounds:
         if self.above_low:
             return f"above {low} and at most {high}{unit}"
         return f"from {low} to {high}{unit}"
-
-
-def shown(value: float) -> str:
-    """A number as a message shows it: whole numbers in full up to 15 digits, else as %g."""
-    if isinstance(value, int) and abs(value) >= 10**15:
-        return f"{str(value)[:4]}... ({len(str(abs(value)))} digits)"
-    if isinstance(value, int) or (
-        math.isfinite(value) and value == round(value) and abs(value) < 1e15
-    ):
-        return str(int(value))
-    return f"{value:g}"
 
 
 # YAML 1.1 reads 0720 as octal, 0789 as text.

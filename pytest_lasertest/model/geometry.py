@@ -5,7 +5,9 @@ Obstacles and the casts against them are in `obstacles.py`.
 
 from __future__ import annotations
 
+import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -95,3 +97,35 @@ def wrap_angles(angles: FloatArray) -> FloatArray:
     """Angles, any shape, wrapped into [-pi, pi) rad: `wrap_angle` for arrays."""
     wrapped: FloatArray = (angles + math.pi) % FULL_TURN - math.pi
     return wrapped
+
+
+def orientation(a: Sequence[float], b: Sequence[float], c: Sequence[float]) -> float:
+    """Twice the signed area of the triangle a, b, c (m²): above zero where a -> b -> c turns
+    counter-clockwise, below where it turns clockwise, zero where the three lie on one line."""
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+
+
+def crossing_edges(corners: Sequence[Sequence[float]]) -> tuple[int, int] | None:
+    """The first two edges of the closed outline through `corners` that cross each other, by
+    index (edge i runs from corner i to the next, the last back to the first); None where no
+    two do. Edges that only touch or run along each other do not cross: Nav2's own tests read a
+    footprint of three points on one line. Quadratic in the corners, which are few."""
+    count = len(corners)
+    edges = [(corners[i], corners[(i + 1) % count]) for i in range(count)]
+    for first, second in itertools.combinations(range(count), 2):
+        # Neighbouring edges share a corner; the last edge neighbours the first.
+        if second - first < 2 or second - first == count - 1:
+            continue
+        if _segments_cross(*edges[first], *edges[second]):
+            return first, second
+    return None
+
+
+def _segments_cross(
+    a: Sequence[float], b: Sequence[float], c: Sequence[float], d: Sequence[float]
+) -> bool:
+    """Whether the segments a-b and c-d cross at one point inside both."""
+    return (
+        orientation(a, b, c) * orientation(a, b, d) < 0.0
+        and orientation(c, d, a) * orientation(c, d, b) < 0.0
+    )

@@ -15,6 +15,9 @@ ParameterValue = bool | int | float | str | tuple["ParameterValue", ...]
 # The largest mobile robots are a few metres across; costmaps rasterise the footprint in cells.
 # As far as a footprint's corner or a collision shape may lie from the base.
 MAX_FOOTPRINT_REACH = 20.0  # m
+# Costmaps test every edge of the footprint at every cell they check; costmap_2d footprints
+# have 4 to a few dozen corners.
+MAX_CORNERS = 100
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D, wrap_angle
+from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose2D, orientation, wrap_angle
 
 # While turning in place the footprint sweeps (part of) a disc; the gate takes the regular polygon
 # around that disc with this many sides, so that every swept region is a convex polygon.
@@ -356,11 +356,7 @@ def _hull(points: FloatArray) -> FloatArray:
     upper: list[tuple[float, float]] = []
     for chain, sequence in ((lower, ordered), (upper, ordered[::-1])):
         for point in sequence:
-            while len(chain) >= 2 and _turn(chain[-2], chain[-1], point) <= 0:
+            while len(chain) >= 2 and orientation(chain[-2], chain[-1], point) <= 0:
                 chain.pop()
             chain.append(point)
     return np.array(lower[:-1] + upper[:-1])
-
-
-def _turn(a: tuple[float, float], b: tuple[float, float], c: tuple[float, float]) -> float:
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])

@@ -17,8 +17,8 @@ from pathlib import Path
 
 from pytest_lasertest.inputs.node import Bounds, SpecNode, read_root
 from pytest_lasertest.model.body import Body
-from pytest_lasertest.model.geometry import Pose3D
-from pytest_lasertest.model.robot import MAX_FOOTPRINT_REACH, Robot, pad_footprint
+from pytest_lasertest.model.geometry import Pose3D, crossing_edges, orientation
+from pytest_lasertest.model.robot import MAX_CORNERS, MAX_FOOTPRINT_REACH, Robot, pad_footprint
 from pytest_lasertest.model.scanner_limits import ProfileError, check_mount
 from pytest_lasertest.pairsfile.body import BODY_FIX, described_body, read_body
 from pytest_lasertest.pairsfile.bundled import ROBOT_FILE, bundled_robots
@@ -106,7 +106,6 @@ REACTION_TIME = Bounds(
 PADDING = Bounds(
     0.0, 1.0, "m", "costmap_2d pads a footprint outward", "padding is a few centimetres"
 )  # (0.01)
-MAX_CORNERS = 100  # costmap_2d footprints have 4 to a few dozen corners
 
 
 def read_robot(node: SpecNode) -> Robot:
@@ -239,12 +238,18 @@ def _footprint(node: SpecNode) -> tuple[tuple[float, float], ...]:
     points = [_corner(corner) for corner in corners]
     if len(points) < 3:
         raise node.error(f"{len(points)} corners enclose no area", example)
-    turns = [_cross(points[i - 2], points[i - 1], points[i]) for i in range(len(points))]
+    turns = [orientation(points[i - 2], points[i - 1], points[i]) for i in range(len(points))]
     if not (all(turn > 0 for turn in turns) or all(turn < 0 for turn in turns)):
         raise node.error("the corners do not form a convex polygon", example)
+    # Turning one way at every corner, a star's outline goes round more than once.
+    if crossing_edges(points) is not None:
+        raise node.error(
+            "the corners do not form a convex polygon: its edges cross each other",
+            f"list the corners in order round the robot; {example}",
+        )
     ordered = points if turns[0] > 0 else points[::-1]
     # On an edge is inside, as costmap_2d's own tests have it (footprint_tests.cpp's triangle).
-    if any(_cross(ordered[i - 1], ordered[i], (0.0, 0.0)) < 0 for i in range(len(ordered))):
+    if any(orientation(ordered[i - 1], ordered[i], (0.0, 0.0)) < 0 for i in range(len(ordered))):
         raise node.error("the polygon does not contain the robot's origin", example)
     return tuple((x, y) for x, y in ordered)
 
@@ -259,10 +264,6 @@ def _corner(node: SpecNode) -> tuple[float, ...]:
             "write the corners in m around the base origin, e.g. [0.5, 0.33]",
         )
     return point
-
-
-def _cross(a: tuple[float, ...], b: tuple[float, ...], c: tuple[float, ...]) -> float:
-    return (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0])
 
 
 def resolve_robot(node: SpecNode) -> Path:

@@ -269,6 +269,21 @@ HOSTILE = {
         "with the joint",
         "mount the scanner on fixed joints",
     ),
+    "a laser on a joint that tilts": Hostile(
+        {
+            "tilting.urdf": ROBOT.replace(
+                '<joint name="laser_joint" type="fixed">',
+                '<joint name="laser_joint" type="revolute">\n    <axis xyz="0 1 0"/>\n'
+                '    <limit lower="-0.5" upper="0.5" effort="1.0" velocity="1.0"/>',
+            )
+        },
+        "{urdf: tilting.urdf}",
+        "tilting.urdf",
+        11,
+        "the sensor's link 'laser' hangs on the revolute joint 'laser_joint': its pose moves "
+        "with the joint",
+        "mount the scanner on fixed joints",
+    ),
     "a second root link": Hostile(
         {
             "two_roots.urdf": ROBOT.replace(

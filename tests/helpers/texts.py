@@ -46,6 +46,22 @@ pairs:
     candidate: {model: hokuyo_ust_10lx, noise: {stddev: 0.01}}
 """
 
+# One 2 m wall 4 m beside a goal 6 m ahead, the Jackal under its bundled Nav2 parameters (issue
+# 46): drawn round the wall alone, the map left the start and the goal off it, unknown space to
+# the stacks, and the Jackal circled its goal.
+WALL_BESIDE_THE_GOAL = """\
+robot: jackal
+controller: nav2
+world:
+  start: {x: 0.0, y: 0.0, yaw: 0.0}
+  goal: {x: 6.0, y: 0.0}
+  time_limit: 60.0
+  walls:
+    - {x: 6.0, y: 4.0, length: 2.0, width: 0.2, height: 2.0}
+pairs:
+  longer: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
+"""
+
 # One valid pair; tests append a line to it (`controller:` goes on line 5).
 GOOD_PAIRS = """\
 robot: husky

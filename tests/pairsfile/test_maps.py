@@ -19,7 +19,7 @@ from pytest_lasertest.model.occupancy import FREE, OCCUPIED, UNKNOWN, OccupancyG
 from pytest_lasertest.pairsfile.maps import read_map
 from tests.helpers import WORLDS
 from tests.helpers.runs import Case, assert_spec_error
-from tests.helpers.texts import write
+from tests.helpers.texts import WALL_BESIDE_THE_GOAL, write
 
 # Line numbers matter: the cases below break one line of each.
 PAIRS = """\
@@ -486,8 +486,13 @@ def _doorway(tmp_path: Path, old: str = "", new: str = "", pixels: Pixels | None
         (tmp_path / name).write_bytes((WORLDS / name).read_bytes())
     pairs = tmp_path / "doorway.lasertest.yaml"
     pairs.write_text(pairs.read_text().replace(old, new))
-    if pixels is not None:
+    if pixels is not None and np.ndim(pixels) == 2:
         Image.fromarray(np.array(pixels, dtype=np.uint8)).save(tmp_path / "doorway.pgm")
+    elif pixels is not None:
+        # A PGM holds grey alone: pixels with colour or alpha go into a PNG the map names.
+        Image.fromarray(np.array(pixels, dtype=np.uint8)).save(tmp_path / "doorway.png")
+        map_file = tmp_path / "doorway.yaml"
+        map_file.write_text(map_file.read_text().replace("doorway.pgm", "doorway.png"))
     return pairs
 
 
@@ -500,8 +505,14 @@ UNKNOWN_GREY = 205  # map_saver's unknown
         ("goal: {x: 8.5, y: 3.8}", "goal: {x: 28.5, y: 3.8}", None, 11, "(28.5, 3.8)"),
         ("", "", [[WHITE]], 10, "(1.5, 1.2)"),
         ("", "", np.full((120, 200), UNKNOWN_GREY), 10, "(1.5, 1.2)"),
+        ("", "", np.full((100, 200, 4), [WHITE, WHITE, WHITE, 0]), 10, "(1.5, 1.2)"),
     ],
-    ids=["goal-20-m-off-the-map", "a-one-cell-map", "an-all-unknown-map"],
+    ids=[
+        "goal-20-m-off-the-map",
+        "a-one-cell-map",
+        "an-all-unknown-map",
+        "a-fully-transparent-png",
+    ],
 )
 def test_a_start_or_goal_the_map_does_not_know_is_an_error_at_its_line(
     tmp_path: Path, old: str, new: str, pixels: Pixels | None, line: int, point: str
@@ -537,28 +548,108 @@ def test_a_speckled_map_of_more_wall_boxes_than_the_simulator_steps_is_an_error(
     assert "clean the map of its speckle" in raised.value.fix
 
 
-def test_walls_kilometres_apart_are_an_error_at_the_walls_line(tmp_path: Path) -> None:
+FAR_WALL = "{x: 9000.0, y: -9000.0, length: 2.0, width: 0.2, height: 2.0}"
+BESIDE = "    - {x: 6.0, y: 4.0, length: 2.0, width: 0.2, height: 2.0}\n"
+# The wall beside the goal, and one 9 km off.
+FAR = WALL_BESIDE_THE_GOAL.replace(BESIDE, f"{BESIDE}    - {FAR_WALL}\n")
+
+
+@pytest.mark.parametrize(
+    ("world", "line", "problem"),
+    [
+        (
+            lambda tmp_path: write(tmp_path, FAR),
+            7,
+            "the walls and the route spread over 9003 x 9006.2 m, wider than the 200 m a side "
+            "the gate draws into a map",
+        ),
+        # The doorway's map spans x 0 to 10 m, y 0 to 5 m.
+        (
+            lambda tmp_path: _doorway(
+                tmp_path, "  time_limit", f"  walls: [{FAR_WALL}]\n  time_limit"
+            ),
+            12,
+            "the map and its walls spread over 9001 x 9005.1 m, wider than the 200 m a side a "
+            "map may span",
+        ),
+    ],
+    ids=["listed-walls", "a-map-and-listed-walls"],
+)
+def test_walls_kilometres_apart_are_an_error_at_the_walls_line(
+    tmp_path: Path, world: Callable[[Path], Path], line: int, problem: str
+) -> None:
     from pytest_lasertest.pairsfile import load_pairs_file
 
-    far = """\
-robot: husky
-world:
-  start: {x: 0.0, y: 0.0, yaw: 0.0}
-  goal: {x: 5.0, y: 0.0}
-  time_limit: 60.0
-  walls:
-    - {x: 0.0, y: 3.0, length: 2.0, width: 0.2, height: 2.0}
-    - {x: 9000.0, y: -9000.0, length: 2.0, width: 0.2, height: 2.0}
-pairs:
-  same: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
-"""
+    assert FAR_WALL in FAR
     with pytest.raises(SpecError) as raised:
-        load_pairs_file(write(tmp_path, far))
-    assert raised.value.location.line == 6
-    assert (
-        "the walls and the route spread over 9004 x 9005.2 m, wider than the 200 m"
-        in raised.value.problem
+        load_pairs_file(world(tmp_path))
+    assert raised.value.location.line == line
+    assert problem in raised.value.problem
+    assert "keep the walls of the part the robot drives through" in raised.value.fix
+
+
+TWO_WALLS = (
+    "  walls:\n"
+    "    - {x: 2.0, y: 4.0, length: 1.0, width: 0.2, height: 2.0}\n"
+    "    - {x: 8.0, y: 1.0, length: 1.0, width: 0.2, height: 2.0}\n"
+)
+# An SDF world of three static crates, each a box.
+CRATES = """\
+<?xml version="1.0"?>
+<sdf version="1.7">
+  <world name="default">
+    <model name="crates">
+      <static>true</static>
+      <link name="a"><pose>2 2.5 0.5 0 0 0</pose><collision name="collision">
+        <geometry><box><size>0.4 0.4 1</size></box></geometry></collision></link>
+      <link name="b"><pose>3 2.5 0.5 0 0 0</pose><collision name="collision">
+        <geometry><box><size>0.4 0.4 1</size></box></geometry></collision></link>
+      <link name="c"><pose>7 2.5 0.5 0 0 0</pose><collision name="collision">
+        <geometry><box><size>0.4 0.4 1</size></box></geometry></collision></link>
+    </model>
+  </world>
+</sdf>
+"""
+
+
+@pytest.mark.parametrize(
+    ("lone_cells", "sdf", "line", "problem"),
+    [
+        (
+            5_000,
+            "",
+            12,
+            "the map's 5,000 wall boxes and the 2 listed walls make 5,002 wall boxes",
+        ),
+        (
+            4_998,
+            "  sdf: crates.world\n",
+            15,
+            "the map's 4,998 wall boxes, the 2 listed walls and the 3 static boxes of the SDF "
+            "world make 5,003 wall boxes",
+        ),
+    ],
+    ids=["listed-walls", "an-sdf-world-after-them"],
+)
+def test_walls_that_take_a_maps_boxes_past_what_the_simulator_steps_are_an_error_at_their_line(
+    tmp_path: Path, lone_cells: int, sdf: str, line: int, problem: str
+) -> None:
+    # Each source alone is within its bound: the map's 5,000 boxes, 500 listed, 500 in SDF.
+    from pytest_lasertest.pairsfile import load_pairs_file
+
+    dots = np.full((100, 200), WHITE)
+    dots[::2, ::2] = BLACK  # 5,000 lone occupied cells, each a box of its own
+    dots[0, : 2 * (5_000 - lone_cells) : 2] = WHITE
+    (tmp_path / "crates.world").write_text(CRATES)
+    pairs = _doorway(tmp_path, "  time_limit", f"{TWO_WALLS}{sdf}  time_limit", dots)
+    with pytest.raises(SpecError) as raised:
+        load_pairs_file(pairs)
+    assert raised.value.location.line == line
+    assert problem in raised.value.problem
+    assert "more than the 5,000 the simulator steps and casts every scan against" in (
+        raised.value.problem
     )
+    assert "clean the map of its speckle" in raised.value.fix
 
 
 def test_five_hundred_walls_are_drawn_into_a_map_of_16_million_cells(
@@ -576,24 +667,13 @@ def test_five_hundred_walls_are_drawn_into_a_map_of_16_million_cells(
 
 
 def test_the_map_drawn_of_listed_walls_covers_the_start_and_the_route(tmp_path: Path) -> None:
-    # One wall 4 m beside the goal: drawn round the wall alone, the map left the start and the
-    # goal off it, unknown space to the stacks, and the Jackal circled its goal.
     from pytest_lasertest.model.occupancy import FREE
     from pytest_lasertest.pairsfile import load_pairs_file
 
-    beside = """\
-robot: jackal
-world:
-  start: {x: 0.0, y: 0.0, yaw: 0.0}
-  route:
-    - {x: 3.0, y: -2.0}
-    - {x: 6.0, y: 0.0}
-  time_limit: 60.0
-  walls:
-    - {x: 6.0, y: 4.0, length: 2.0, width: 0.2, height: 2.0}
-pairs:
-  same: {baseline: {model: hokuyo_ust_10lx}, candidate: {model: hokuyo_ust_20lx}}
-"""
+    goal = "  goal: {x: 6.0, y: 0.0}\n"
+    assert goal in WALL_BESIDE_THE_GOAL
+    route = "  route:\n    - {x: 3.0, y: -2.0}\n    - {x: 6.0, y: 0.0}\n"
+    beside = WALL_BESIDE_THE_GOAL.replace(goal, route)
     grid = load_pairs_file(write(tmp_path, beside)).world.walls.grid
     assert grid is not None
     driven = np.array([[0.0, 0.0], [3.0, -2.0], [6.0, 0.0], [-0.9, -2.9], [6.9, 0.9]])

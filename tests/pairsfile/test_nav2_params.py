@@ -397,6 +397,31 @@ CASES = {
         "reaches 2000.01 m from the robot's origin",
         "within 20 m of its origin",
     ),
+    "a footprint whose edges cross (a bow tie)": Case(
+        '"[[0.55, 0.45], [0.55, -0.45], [-0.55, -0.45], [-0.55, 0.45]]"',
+        '"[[0.55, 0.45], [-0.55, -0.45], [0.55, -0.45], [-0.55, 0.45]]"',
+        16,
+        "local_costmap.local_costmap.ros__parameters.footprint",
+        "has edges that cross each other, from (0.55, 0.45) to (-0.55, -0.45) and from "
+        "(0.55, -0.45) to (-0.55, 0.45): it outlines no body",
+        "list the corners in order round the robot",
+    ),
+    "a footprint of more corners than costmaps test": Case(
+        '"[[0.55, 0.45], [0.55, -0.45], [-0.55, -0.45], [-0.55, 0.45]]"',
+        '"[' + ", ".join(["[0.5, 0.0]"] * 101) + ']"',
+        16,
+        "local_costmap.local_costmap.ros__parameters.footprint",
+        "has 101 corners, more than the 100 the gate accepts",
+        "give the robot's outline with fewer corners",
+    ),
+    "a robot_radius of a kilometre": Case(
+        '      footprint: "[[0.55, 0.45], [0.55, -0.45], [-0.55, -0.45], [-0.55, 0.45]]"',
+        "      robot_radius: 1000",
+        16,
+        "local_costmap.local_costmap.ros__parameters.robot_radius",
+        "reaches 1000.01 m from the robot's origin",
+        "within 20 m of its origin",
+    ),
 }
 
 
@@ -663,14 +688,43 @@ def test_a_yaml_alias_is_refused_at_its_line_as_ros_2_refuses_it(tmp_path: Path)
         ("controller_frequency: 40.0", "controller_frequency: .inf", "must be a finite number"),
         ("controller_frequency: 40.0", "controller_frequency: .nan", "must be a finite number"),
         ("controller_frequency: 40.0", "controller_frequency: 1.0e+9", "beyond any navigation"),
-        ("batch_size: 1000", "batch_size: " + "9" * 401, "is beyond any Nav2 configuration"),
+        (
+            "max_decel: [-2.5, 0.0, -3.2]",
+            "smoothing_frequency: 1.0e+9, max_decel: [-2.5, 0.0, -3.2]",
+            "beyond any navigation",
+        ),
+        (
+            "batch_size: 1000",
+            "batch_size: " + "9" * 401,
+            "9999... (401 digits) is beyond any Nav2 configuration",
+        ),
         (
             "max_decel: [-2.5, 0.0, -3.2]",
             "max_decel: [-.inf, 0.0, -3.2]",
             "holds a figure that is not a finite number",
         ),
+        # The goal checker goes in on the line of `old`, which moves down one.
+        (
+            'controller_plugins: ["FollowPath"]',
+            'goal_checker: {xy_goal_tolerance: .inf}\n    controller_plugins: ["FollowPath"]',
+            "must be a finite number",
+        ),
+        (
+            'controller_plugins: ["FollowPath"]',
+            'goal_checker: {xy_goal_tolerance: .nan}\n    controller_plugins: ["FollowPath"]',
+            "must be a finite number",
+        ),
     ],
-    ids=["infinite-rate", "nan-rate", "gigahertz-rate", "401-digits", "infinite-limit"],
+    ids=[
+        "infinite-rate",
+        "nan-rate",
+        "gigahertz-rate",
+        "gigahertz-smoothing",
+        "401-digits",
+        "infinite-limit",
+        "infinite-tolerance",
+        "nan-tolerance",
+    ],
 )
 def test_figures_no_configuration_holds_are_errors_at_their_line(
     tmp_path: Path, old: str, new: str, problem: str

@@ -395,6 +395,13 @@ ROBOT_CASES = {
         "footprint",
         "the corners do not form a convex polygon",
     ),
+    "a footprint that goes round twice (a star)": (
+        "[[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]",
+        "[[0.3, 0.0], [-0.24, 0.18], [0.09, -0.29], [0.09, 0.29], [-0.24, -0.18]]",
+        3,
+        "footprint",
+        "the corners do not form a convex polygon: its edges cross each other",
+    ),
     "a footprint beside the robot": (
         "[[-0.3, -0.2], [0.3, -0.2], [0.3, 0.2], [-0.3, 0.2]]",
         "[[1.0, 1.0], [2.0, 1.0], [2.0, 2.0]]",

@@ -1,6 +1,7 @@
-"""A pair's control run in a world with walls (issue 25): the Jackal of
-examples/worlds/doorway.lasertest.yaml, given only a goal in the next room, drives through the
-1.2 m doorway with either scanner, as the gate's `PAIR[no-obstacle]` item drives it."""
+"""A pair's control run in a world with walls, as the gate's `PAIR[no-obstacle]` item drives it:
+the Jackal of examples/worlds/doorway.lasertest.yaml, given only a goal in the next room, drives
+through the 1.2 m doorway with either scanner (issue 25); under its Nav2 parameters it reaches a
+goal in the open with one listed wall beside it (issue 46)."""
 
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ from pytest_lasertest.search.drives import PairDrive, RunCache, drive_pair
 from pytest_lasertest.sim.client import PhysicsClient
 from pytest_lasertest.sim.scenario import Run
 from tests.helpers import WORLDS
+from tests.helpers.texts import WALL_BESIDE_THE_GOAL
 
 DOORWAY = WORLDS / "doorway.lasertest.yaml"
 # The wall between the rooms stands at x = 5 m (0.1 m thick); its doorway spans y 1.9-3.1 m.
@@ -57,3 +59,11 @@ def test_the_doorway_examples_control_run_passes_with_the_old_and_the_new_scanne
 
     assert drive.baseline.passed, drive.baseline.verdicts.failures()
     assert drive.candidate.passed, drive.candidate.verdicts.failures()
+
+
+def test_the_jackal_under_nav2_reaches_a_goal_with_one_wall_beside_it(
+    pytester: pytest.Pytester,
+) -> None:
+    (pytester.path / "gate.lasertest.yaml").write_text(WALL_BESIDE_THE_GOAL)
+    result = pytester.runpytest("-k", "no-obstacle", "--laser-seed=1")
+    result.assert_outcomes(passed=1, deselected=result.parseoutcomes()["deselected"])

@@ -11,7 +11,8 @@ import re
 
 import numpy as np
 
-from pytest_lasertest.model.robot import MAX_FOOTPRINT_REACH, pad_footprint
+from pytest_lasertest.model.geometry import crossing_edges
+from pytest_lasertest.model.robot import MAX_CORNERS, MAX_FOOTPRINT_REACH, pad_footprint
 from pytest_lasertest.nav.move_base.settings import MAX_CELLS
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
 from pytest_lasertest.nav.nav2.settings import (
@@ -119,16 +120,48 @@ def _footprint(
     return footprint
 
 
+FOOTPRINT_EXAMPLE = '"[[0.5, 0.4], [0.5, -0.4], [-0.5, -0.4], [-0.5, 0.4]]"'
+
+
 def _polygon(node: NodeParameters, text: str) -> tuple[tuple[float, float], ...]:
-    """`footprint_from_string`, its refusal a problem at `footprint`."""
+    """`footprint_from_string`, its refusal a problem at `footprint`; so is an outline of more
+    corners than a robot file may give, or one whose edges cross, which Nav2 would take."""
     try:
-        return footprint_from_string(text)
+        corners = footprint_from_string(text)
     except ValueError as error:
         raise node.problem(
-            "footprint",
-            f"{error}: {text!r}",
-            'write e.g. "[[0.5, 0.4], [0.5, -0.4], [-0.5, -0.4], [-0.5, 0.4]]"',
+            "footprint", f"{error}: {text!r}", f"write e.g. {FOOTPRINT_EXAMPLE}"
         ) from None
+    if len(corners) > MAX_CORNERS:
+        raise node.problem(
+            "footprint",
+            f"has {len(corners)} corners, more than the {MAX_CORNERS} the gate accepts: the "
+            "costmaps test every edge at every cell they check",
+            "give the robot's outline with fewer corners (a rectangle has 4)",
+        )
+    _check_outline(node, corners)
+    return corners
+
+
+def _check_outline(node: NodeParameters, corners: tuple[tuple[float, float], ...]) -> None:
+    """Refuse a footprint whose edges cross (a bow tie, a star): it outlines no body, and the
+    costmaps would clear and the collision checks test a shape no robot has."""
+    crossing = crossing_edges(corners)
+    if crossing is None:
+        return
+    first, second = (_edge(corners, index) for index in crossing)
+    raise node.problem(
+        "footprint",
+        f"has edges that cross each other, {first} and {second}: it outlines no body, and the "
+        "costmaps and collision checks would read a shape the robot does not have",
+        f"list the corners in order round the robot, e.g. {FOOTPRINT_EXAMPLE}",
+    )
+
+
+def _edge(corners: tuple[tuple[float, float], ...], index: int) -> str:
+    """The edge from corner `index` to the next, as a message names it."""
+    (x0, y0), (x1, y1) = corners[index], corners[(index + 1) % len(corners)]
+    return f"from ({x0:g}, {y0:g}) to ({x1:g}, {y1:g})"
 
 
 def footprint_from_string(text: str) -> tuple[tuple[float, float], ...]:

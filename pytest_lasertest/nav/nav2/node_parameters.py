@@ -8,6 +8,7 @@ import dataclasses
 import math
 from typing import Any
 
+from pytest_lasertest.model.figures import shown
 from pytest_lasertest.model.robot import ParameterValue
 
 # Rates, sizes, counts and times that must be above zero; the rest may be zero.
@@ -109,7 +110,7 @@ class NodeParameters:
             raise self.problem(name, f"is a number, not {value!r}", "write a number")
         if isinstance(value, int) and abs(value) > HUGE:
             raise self.problem(
-                name, f"{value} is beyond any Nav2 configuration", "check the figure"
+                name, f"{shown(value)} is beyond any Nav2 configuration", "check the figure"
             )
         if whole and value != int(value):
             raise self.problem(name, f"is a whole number, not {value}", "write a whole number")

@@ -4,7 +4,7 @@ of the move_base and Nav2 parameters a `navigation:` sets."""
 from __future__ import annotations
 
 from pytest_lasertest.model.body import SHAPE_SIZES
-from pytest_lasertest.model.robot import MAX_FOOTPRINT_REACH
+from pytest_lasertest.model.robot import MAX_CORNERS, MAX_FOOTPRINT_REACH
 from pytest_lasertest.nav.move_base.settings import LIMITS, parameter_types
 from pytest_lasertest.nav.nav2.settings import NEWEST_JAZZY, RELEASES
 from pytest_lasertest.pairsfile import body, robot
@@ -144,7 +144,7 @@ def _footprint() -> Schema:
         "The convex outline around the base origin, as costmap_2d's `footprint`.",
         corner,
         least=3,
-        most=robot.MAX_CORNERS,
+        most=MAX_CORNERS,
     )
 
 
