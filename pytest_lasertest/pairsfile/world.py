@@ -21,16 +21,14 @@ from pytest_lasertest.model.obstacles import Box, polygon_clearance
 from pytest_lasertest.model.occupancy import UNKNOWN, OccupancyGrid
 from pytest_lasertest.model.robot import Robot
 from pytest_lasertest.model.route import Leg, NominalPath, nominal_path, place, swept_polygons
-from pytest_lasertest.model.walls import MAP_MARGIN, NO_WALLS, WALL_HEIGHT, Walls
+from pytest_lasertest.model.walls import NO_WALLS, Walls
 from pytest_lasertest.nav.move_base.settings import (
     NavigationSettings,
     costmap_cells,
     global_costmap_size,
 )
 from pytest_lasertest.nav.waypoints import CLEARANCE, plan_route
-from pytest_lasertest.pairsfile.maps import MAX_MAP_EXTENT, MAX_MAP_WALLS, read_map
-from pytest_lasertest.pairsfile.sdf_world import read_sdf_walls
-from pytest_lasertest.pairsfile.walls import read_walls
+from pytest_lasertest.pairsfile.world_walls import map_corners, read_world_walls
 
 WORLD_KEYS = ("start", "goal", "route", "time_limit", "map", "walls", "sdf")
 # Closer than this, two waypoints are one: the robot cannot tell them apart.
@@ -66,15 +64,6 @@ YAW = Bounds(
 )
 # The simulator counts a robot within this of the goal as arrived (`sim/oracles.py`, Rules).
 GOAL_TOLERANCE = 0.2  # m
-# The simulator steps every wall box and casts every scan against it, whichever source gives
-# it: a map's bound holds for the world's walls together.
-MAX_WORLD_WALLS = MAX_MAP_WALLS
-# The sources of walls besides a map, in the order they are added to its boxes, each with the
-# words for one of its walls and for several.
-LISTED_SOURCES = (
-    ("walls", read_walls, ("listed wall", "listed walls")),
-    ("sdf", read_sdf_walls, ("static box of the SDF world", "static boxes of the SDF world")),
-)
 
 
 @dataclass(frozen=True)
@@ -111,7 +100,7 @@ def read_world(node: SpecNode, robot: Robot) -> World:
     start = _pose(fields["start"])
     waypoints = [fields["goal"]] if "goal" in fields else _waypoints(fields["route"])
     route = _route(start, waypoints)
-    walls = _walls(fields, ((start.x, start.y), *((point.x, point.y) for point in route)))
+    walls = read_world_walls(fields, ((start.x, start.y), *((point.x, point.y) for point in route)))
     route_node = fields.get("route", fields.get("goal", node))
     if "map" in fields and walls.grid is not None:
         ends = [(fields["start"], Point2D(start.x, start.y))]
@@ -126,85 +115,6 @@ def read_world(node: SpecNode, robot: Robot) -> World:
     _check_global_costmap(world, robot, route_node)
     _check_time_limit(world, robot, fields["time_limit"])
     return world
-
-
-def _walls(fields: dict[str, SpecNode], driven: tuple[tuple[float, float], ...]) -> Walls:
-    """The walls of the world's map, those it lists and those of its SDF world, each source
-    bounded together with those before it, at its own line; the map of listed and SDF walls
-    covers them and the points `driven` (m), the start and waypoints."""
-    grid = read_map(fields["map"]) if "map" in fields else None
-    counts = [] if grid is None else [_map_count(grid)]
-    listed: tuple[Box, ...] = ()
-    for key, read, (one, several) in LISTED_SOURCES:
-        if key in fields:
-            boxes = read(fields[key])
-            words = one if len(boxes) == 1 else several
-            counts.append((len(boxes), f"the {len(boxes):,} {words}"))
-            _check_wall_count(counts, fields[key])
-            listed += boxes
-            _check_walls_extent(grid, listed, driven, fields[key])
-    if grid is not None:
-        return Walls.mapped(grid, listed)
-    return Walls.listed(listed, driven)
-
-
-def _map_count(grid: OccupancyGrid) -> tuple[int, str]:
-    count = len(grid.wall_boxes(WALL_HEIGHT))
-    return count, f"the map's {count:,} wall boxes"
-
-
-def _check_wall_count(counts: list[tuple[int, str]], node: SpecNode) -> None:
-    """Refuse walls that, with those of the sources before them (`counts`, each with its
-    words, this source's last), make more boxes than the simulator steps: each source's own
-    bound lets a map's 5,000 boxes take 1,000 listed and SDF walls more."""
-    total = sum(count for count, _ in counts)
-    if total <= MAX_WORLD_WALLS:
-        return
-    *earlier, last = (what for _, what in counts)
-    named = f"{', '.join(earlier)} and {last}" if earlier else last
-    raise node.error(
-        f"{named} make {total:,} wall boxes, more than the "
-        f"{MAX_WORLD_WALLS:,} the simulator steps and casts every scan against",
-        "clean the map of its speckle (isolated occupied cells), merge walls that meet in a "
-        "line into one, or draw the listed walls into the map",
-    )
-
-
-def _check_walls_extent(
-    grid: OccupancyGrid | None,
-    walls: tuple[Box, ...],
-    driven: tuple[tuple[float, float], ...],
-    node: SpecNode,
-) -> None:
-    """Refuse walls spread wider than a map may be. Without a map they are drawn into one at
-    MAP_RESOLUTION, its margin round them and the route, and walls kilometres apart would make
-    one of billions of cells; with one, the world is held to the map's own bound (the route
-    keeps to the map's known cells, `_check_on_map`)."""
-    corners = np.array([corner for wall in walls for corner in wall.corners()]).reshape(-1, 2)
-    if grid is None:
-        width, height = _spread(np.vstack([corners, *driven]), MAP_MARGIN)
-        what, bound, where = "the walls and the route", "the gate draws into a map", ""
-    else:
-        width, height = _spread(np.vstack([corners, *_map_corners(grid)]), 0.0)
-        what, bound, where = "the map and its walls", "a map may span", ", on the map"
-    if max(width, height) > MAX_MAP_EXTENT:
-        raise node.error(
-            f"{what} spread over {width:g} x {height:g} m, wider than the {MAX_MAP_EXTENT:g} m "
-            f"a side {bound}",
-            f"keep the walls of the part the robot drives through{where}",
-        )
-
-
-def _spread(points: FloatArray, margin: float) -> tuple[float, float]:
-    """How far the points, shape (P, 2), spread along x and along y (m), `margin` round them."""
-    width, height = points.max(axis=0) - points.min(axis=0) + 2.0 * margin
-    return float(width), float(height)
-
-
-def _map_corners(grid: OccupancyGrid) -> tuple[tuple[float, float], tuple[float, float]]:
-    """The map's lower left and upper right corners (m)."""
-    (low_x, low_y), side = grid.origin, grid.resolution
-    return (low_x, low_y), (low_x + grid.width * side, low_y + grid.height * side)
 
 
 def _check_ends(
@@ -240,7 +150,7 @@ def _check_on_map(grid: OccupancyGrid, points: list[tuple[SpecNode, Point2D]]) -
     for node, point in points:
         if grid.values_at(np.array([[point.x, point.y]]))[0] != UNKNOWN:
             continue
-        (low_x, low_y), (high_x, high_y) = _map_corners(grid)
+        (low_x, low_y), (high_x, high_y) = map_corners(grid)
         span = f"x {low_x:g} to {high_x:g} m, y {low_y:g} to {high_y:g} m"
         raise node.error(
             f"({point.x:g}, {point.y:g}) lies off the map or on a cell it leaves unknown (the "
