@@ -87,6 +87,11 @@ class OccupancyGrid:
         boxes = [self._box(*rectangle, height) for rectangle in self._occupied_rectangles]
         return tuple(sorted(boxes, key=lambda box: (box.y, box.x)))
 
+    @property
+    def wall_box_count(self) -> int:
+        """How many boxes `wall_boxes` makes, without making them."""
+        return len(self._occupied_rectangles)
+
     @functools.cached_property
     def _occupied_rectangles(self) -> tuple[tuple[tuple[int, int], int, int], ...]:
         """The wall boxes' cells, ((first, last column), first row, end row) each: once for a

@@ -41,7 +41,7 @@ from pytest_lasertest.inputs.errors import display_path
 from pytest_lasertest.inputs.files import FileKind, UnreadableFile, read_regular_file
 from pytest_lasertest.inputs.node import Bounds, SpecNode, describe, read_root
 from pytest_lasertest.model.occupancy import FREE, OCCUPIED, UNKNOWN, Cells, OccupancyGrid
-from pytest_lasertest.model.walls import MAP_RESOLUTION, WALL_HEIGHT
+from pytest_lasertest.model.walls import MAP_RESOLUTION
 from pytest_lasertest.nav.move_base.settings import MAX_CELLS
 
 if TYPE_CHECKING:
@@ -167,7 +167,7 @@ def _check_extent(grid: OccupancyGrid, node: SpecNode) -> None:
             f"m cells that is {MAX_CELLS} cells a side",
             "crop the map to the part the robot drives through",
         )
-    boxes = len(grid.wall_boxes(WALL_HEIGHT))
+    boxes = grid.wall_box_count
     if boxes > MAX_MAP_WALLS:
         raise node.error(
             f"the map's occupied cells make {boxes:,} wall boxes, more than the "

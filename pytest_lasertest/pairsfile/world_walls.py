@@ -12,7 +12,7 @@ from pytest_lasertest.inputs.node import SpecNode
 from pytest_lasertest.model.geometry import FloatArray
 from pytest_lasertest.model.obstacles import Box
 from pytest_lasertest.model.occupancy import OccupancyGrid
-from pytest_lasertest.model.walls import MAP_MARGIN, WALL_HEIGHT, Walls
+from pytest_lasertest.model.walls import MAP_MARGIN, Walls
 from pytest_lasertest.pairsfile.maps import MAX_MAP_EXTENT, MAX_MAP_WALLS, read_map
 from pytest_lasertest.pairsfile.sdf_world import read_sdf_walls
 from pytest_lasertest.pairsfile.walls import read_walls
@@ -49,7 +49,7 @@ def read_world_walls(fields: dict[str, SpecNode], driven: tuple[tuple[float, flo
 
 
 def _map_count(grid: OccupancyGrid) -> tuple[int, str]:
-    count = len(grid.wall_boxes(WALL_HEIGHT))
+    count = grid.wall_box_count
     return count, f"the map's {count:,} wall boxes"
 
 

@@ -41,6 +41,11 @@ def blame_driver(setting: Setting, obstacle: Obstacle) -> tuple[TraitTried, ...]
     return tuple(tried)
 
 
+def blame(setting: Setting, obstacle: Obstacle) -> tuple[tuple[TraitTried, ...], ChainTried | None]:
+    """What a regression past `obstacle` comes from: each differing driver trait, and the chain."""
+    return blame_driver(setting, obstacle), blame_chain(setting, obstacle)
+
+
 def blame_lines(driver: tuple[TraitTried, ...], chain: ChainTried | None) -> list[str]:
     """A failure report's `driver` and `filters` lines, for what was tried."""
     return [

@@ -22,7 +22,7 @@ from pytest_lasertest.pairsfile.placements import PinnedPlacement
 from pytest_lasertest.plugin.items.base import PairItem
 from pytest_lasertest.reports.drive import MEANINGS, drive_properties, drive_report
 from pytest_lasertest.reports.formats import Artifacts
-from pytest_lasertest.search.blame import blame_chain, blame_driver, blame_lines
+from pytest_lasertest.search.blame import blame, blame_lines
 from pytest_lasertest.search.drives import drive_pair
 
 
@@ -73,8 +73,7 @@ class PinnedItem(PairItem):
             return []
         setting = self.lasertest.setting(self.spec, self.pair, self.controller)
         setting = dataclasses.replace(setting, seed=self.pinned.seed)
-        obstacle = self.pinned.obstacle
-        return blame_lines(blame_driver(setting, obstacle), blame_chain(setting, obstacle))
+        return blame_lines(*blame(setting, self.pinned.obstacle))
 
     def _details(self) -> list[str]:
         pinned = self.pinned

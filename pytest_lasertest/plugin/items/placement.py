@@ -34,7 +34,7 @@ from pytest_lasertest.reports.failure import (
     witness_properties,
 )
 from pytest_lasertest.reports.formats import Artifacts
-from pytest_lasertest.search.blame import ChainTried, TraitTried, blame_chain, blame_driver
+from pytest_lasertest.search.blame import ChainTried, TraitTried, blame
 from pytest_lasertest.search.offsets import OffsetBox
 from pytest_lasertest.search.trials import TrialResult, Trials, noted_result
 from pytest_lasertest.search.witness import search_witness
@@ -141,8 +141,7 @@ class SearchItem(PairItem):
         if result.classification != "regression":
             return (), None
         setting = self.lasertest.setting(self.spec, self.pair, self.controller)
-        obstacle = result.placement.obstacle
-        return blame_driver(setting, obstacle), blame_chain(setting, obstacle)
+        return blame(setting, result.placement.obstacle)
 
     def _reject(self, witness: Witness, verification: Verification) -> None:
         """Fail the item with the witness the solver should not have returned."""
