@@ -1,5 +1,6 @@
 """nav2_collision_monitor's polygon tests (test/polygons_test.cpp), rebuilt on our collision
-monitor (`collision_monitor.py`: `approach` and its ray-crossing count `_inside`) and on the
+monitor (`collision_monitor.py`: `approach`, and the ray-crossing count `count_inside` that runs
+in it, compiled in `kernels.py`) and on the
 collision_monitor node's parameters as `params.configure` reads them (in a params file whose
 collision_monitor sets the test's parameters, tests/helpers/nav2_params.py).
 
@@ -19,11 +20,8 @@ import numpy as np
 import pytest
 
 from pytest_lasertest.model.robot import ParameterValue
-from pytest_lasertest.nav.nav2.collision_monitor import (
-    CollisionMonitorSettings,
-    _inside,
-    approach,
-)
+from pytest_lasertest.nav.nav2.collision_monitor import CollisionMonitorSettings, approach
+from pytest_lasertest.nav.nav2.kernels import count_inside
 from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
 from tests.helpers.nav2_params import nav2_settings
 from tests.helpers.upstream import NAVIGATION2_JAZZY, Source
@@ -56,6 +54,12 @@ def collision_time(command: tuple[float, float], seen: np.ndarray) -> float:
     return allowed[axis] / command[axis] * TIME_BEFORE_COLLISION
 
 
+def inside(seen: np.ndarray, polygon: np.ndarray) -> int:
+    """How many of the points (P, 2) m the polygon (V, 2) m holds, counted as the monitor counts
+    them, in the robot's own frame."""
+    return count_inside(seen, np.ascontiguousarray(polygon), 0.0, 0.0, 0.0)
+
+
 def monitor(polygon: dict[str, ParameterValue]) -> CollisionMonitorSettings | None:
     """The monitor a params file makes whose collision_monitor has the one polygon TestPolygon,
     with these parameters, and one scan source."""
@@ -71,15 +75,15 @@ def monitor(polygon: dict[str, ParameterValue]) -> CollisionMonitorSettings | No
 @POLYGONS.test("Tester.testPolygonGetPointsInside", assertions=2)
 def test_points_outside_the_square_count_none_and_one_inside_counts_one() -> None:
     outside = points((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))
-    assert _inside(outside, SQUARE) == 0
-    assert _inside(np.vstack([outside, [[-0.1, 0.3]]]), SQUARE) == 1
+    assert inside(outside, SQUARE) == 0
+    assert inside(np.vstack([outside, [[-0.1, 0.3]]]), SQUARE) == 1
 
 
 @POLYGONS.test("Tester.testPolygonGetPointsInsideEdge", assertions=2)
 def test_points_level_with_edges_along_the_ray_are_not_counted_inside() -> None:
     level = points((-2.0, -1.0), (-2.0, 0.0), (-2.0, 1.0), (3.0, -1.0), (3.0, 0.0), (3.0, 1.0))
-    assert _inside(level, ARBITRARY) == 0
-    assert _inside(np.vstack([level, [[0.0, 0.0]]]), ARBITRARY) == 1
+    assert inside(level, ARBITRARY) == 0
+    assert inside(np.vstack([level, [[0.0, 0.0]]]), ARBITRARY) == 1
 
 
 @POLYGONS.test("Tester.testPolygonGetCollisionTime", assertions=5)

@@ -4,7 +4,7 @@
 The signed distance from a convex footprint at a pose to a point is the largest of its edge
 lines' (normal . point - offset): <= 0 inside, and outside at most the Euclidean distance (less
 by a corner). DWA needs only its least over a rollout's steps and the cells near them. With
-walls in the map that is thousands of cells at thousands of poses; clearance_kernels.py skips,
+walls in the map that is thousands of cells at thousands of poses; kernels.py skips,
 compiled, the cells that cannot be nearest. A cell it measures is measured by these operations,
 in this order, so the least is the same to the bit as measuring every cell at every pose:
 
@@ -21,7 +21,7 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FloatArray
-from pytest_lasertest.nav.move_base.clearance_kernels import any_within, least_per_group
+from pytest_lasertest.nav.move_base.kernels import any_within, least_per_group
 
 # m: covers the rounding of the bounds, so a square kept in doubt changes no least.
 ROUNDING = 1e-9

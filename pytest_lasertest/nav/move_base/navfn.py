@@ -1,4 +1,4 @@
-"""The global planner: a grid planner with the semantics of ROS navfn (NavfnROS), numpy only.
+"""The global planner: a grid planner with the semantics of ROS navfn (NavfnROS).
 
 The costmap's costs become navfn's: a cell costing c < 253 costs neutral_cost + cost_factor c
 to enter (truncated to an integer and capped at 253, as navfn stores it in a byte), an unknown
@@ -24,17 +24,13 @@ Deviations from navfn, all deliberate:
   column. As in NavfnROS, the nearest reached cell wins, the first in [y, x] order among equals.
 
 The potential is computed in integers (navfn costs times SCALE, diagonal steps rounded), so it is
-exact and deterministic. It is the fixed point of directional min-plus sweeps: along a line of
-cells, d[i] = min(d[i], d[i-1] + w[i]) is a prefix scan, d = C + (running minimum of d - C) with
-C = cumsum(w). The grid is stored flat, each row followed by blocked cells and the grid framed by
-blocked rows; reshaped into rows of width+1, width, width-1 or (transposed) 1 cells, the grid's
-diagonals, columns, anti-diagonals and rows become the columns of the reshaped array, and the
-blocked cells break every line where it would leave the grid.
+exact and deterministic: each cell's cheapest-path cost, found by Dijkstra's algorithm, compiled
+in kernels.py. The grid is stored flat, each row followed by blocked cells and the grid framed by
+blocked rows, so that every step off the grid enters a cell that cannot be entered.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass
 from typing import TypeVar
@@ -45,6 +41,7 @@ import numpy.typing as npt
 from pytest_lasertest.model.geometry import FloatArray, IntArray
 from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, UNKNOWN
 from pytest_lasertest.nav.move_base.costmap import Costmap
+from pytest_lasertest.nav.move_base.kernels import cheapest_costs
 
 SCALE = 1000  # potential units per navfn cost unit and cell stepped
 UNREACHABLE = int(np.iinfo(np.intp).max)  # the potential of a cell no path reaches
@@ -98,28 +95,15 @@ class _Layout:
         """The layout of navfn's costs for the costmap `costs` (R, C)."""
         navfn = _navfn_costs(costs, settings)
         rows, cols = navfn.shape
-        # At least 3 cells a row, so that the line steps 1, width - 1, width and width + 1 differ;
-        # one row more, so that every line view ends on a whole row of its reshape.
+        # At least 3 cells a row, so that the steps 1, width - 1, width and width + 1 differ.
         width = max(cols + 1, 3)
-        layout = cls(rows, cols, width, np.zeros((rows + 3) * width + 1, dtype=np.uint8))
+        layout = cls(rows, cols, width, np.zeros((rows + 2) * width, dtype=np.uint8))
         layout.grid(layout.costs)[:] = navfn
         return layout
-
-    @property
-    def used(self) -> int:
-        """How many cells the framed grid takes; the rest of the buffer only pads its lines."""
-        return (self.rows + 2) * self.width
 
     def index(self, cell: tuple[int, int]) -> int:
         """The flat index of cell [x, y]."""
         return (cell[1] + 1) * self.width + cell[0]
-
-    def lines(self, buffer: IntArray, step: int) -> IntArray:
-        """A view of the flat `buffer` (B,) whose columns are its lines of cells `step` apart."""
-        if step == 1:
-            return buffer[: self.used].reshape(-1, self.width).T
-        count = -(-self.used // step)
-        return buffer[: count * step].reshape(count, step)
 
     def grid(self, buffer: npt.NDArray[_Cell]) -> npt.NDArray[_Cell]:
         """A view of the grid's cells (R, C) in the flat `buffer` (B,)."""
@@ -145,16 +129,27 @@ def _shifted(mask: npt.NDArray[np.bool_], offset: int) -> npt.NDArray[np.bool_]:
     return out
 
 
-def _entry_weights(layout: _Layout, out: IntArray) -> tuple[_Weights, int]:
-    """The cost of entering each flat cell along each step, both ways, written to `out` (5, B),
-    and the blocked cost: it exceeds every real path's, so any sum holding it marks no path."""
-    costs, width = layout.costs, layout.width
-    enterable = costs > 0
+def _step_costs(layout: _Layout) -> tuple[IntArray, IntArray, int]:
+    """The cost (256,) of entering a cell of each navfn cost along an axis and diagonally, and
+    the blocked cost: it exceeds every real path's, so any sum holding it marks no path."""
     every = np.arange(INSCRIBED + 1)  # lookup tables keep big temporaries few
     diagonal_of = np.rint(every * SCALE * math.sqrt(2.0)).astype(np.intp)
-    blocked = (int(np.count_nonzero(enterable)) + 1) * int(diagonal_of[-1]) + 1
+    blocked = (int(np.count_nonzero(layout.costs)) + 1) * int(diagonal_of[-1]) + 1
     axis_of = every * SCALE
     axis_of[0] = diagonal_of[0] = blocked
+    if (layout.costs.size + 2) * blocked >= np.iinfo(np.intp).max:
+        raise ValueError(f"a costmap of {layout.cols} x {layout.rows} cells is too large to plan")
+    return axis_of, diagonal_of, blocked
+
+
+def _entry_weights(
+    layout: _Layout, steps: tuple[IntArray, IntArray, int], out: IntArray
+) -> _Weights:
+    """The cost of entering each flat cell along each step, both ways, written to `out` (5, B),
+    from the step costs `_step_costs` gives."""
+    costs, width = layout.costs, layout.width
+    enterable = costs > 0
+    axis_of, diagonal_of, blocked = steps
     axis = np.take(axis_of, costs, out=out[0])
     weights: _Weights = {1: (axis, axis), width: (axis, axis)}
     for turn, forward, backward in ((1, out[1], out[2]), (-1, out[3], out[4])):
@@ -164,90 +159,17 @@ def _entry_weights(layout: _Layout, out: IntArray) -> tuple[_Weights, int]:
             corners = _shifted(enterable, sign * width) & _shifted(enterable, sign * turn)
             entry[~corners] = blocked
         weights[width + turn] = (forward, backward)
-    return weights, blocked
-
-
-@dataclass(frozen=True)
-class _Sweep:
-    """Min-plus sweeps along the lines of cells one flat step apart, both ways."""
-
-    line: IntArray  # (M, K) view of the potential: each column a line of cells
-    ahead: IntArray  # (M, K) running sums of the entry weights forward
-    behind: IntArray  # (M, K) running sums of the entry weights backward, to the cell before
-    rows: list[IntArray]  # the M rows of `line`, built once
-
-    @classmethod
-    def along(
-        cls, layout: _Layout, potential: IntArray, step: int, weights: _Weights, out: IntArray
-    ) -> _Sweep:
-        """The sweeps along `step`, their running sums written to `out` (2, B)."""
-        forward, backward = weights[step]
-        ahead, behind = layout.lines(out[0], step), layout.lines(out[1], step)
-        np.cumsum(layout.lines(forward, step), axis=0, out=ahead)
-        entries = layout.lines(backward, step)
-        if backward is forward:
-            np.subtract(ahead, entries, out=behind)
-        else:
-            np.cumsum(entries, axis=0, out=behind)
-            behind -= entries
-        line = layout.lines(potential, step)
-        return cls(line, ahead, behind, list(line))
-
-    def relax(self) -> None:
-        """Forward, d = C + running min of (d - C); back, the same with the backward sums."""
-        line = self.line  # in place: a view of the potential
-        line -= self.ahead
-        _running_min(self.rows)
-        line += self.ahead
-        line += self.behind
-        _running_min(self.rows[::-1])
-        line -= self.behind
-
-
-def _running_min(rows: list[IntArray]) -> None:
-    # A loop over rows, each one vectorised minimum across all the lines: numpy's
-    # minimum.accumulate along axis 0 takes several times as long.
-    for before, row in itertools.pairwise(rows):
-        np.minimum(row, before, out=row)
+    return weights
 
 
 def _flat_potential(layout: _Layout, start: int) -> tuple[IntArray, _Weights, int]:
-    """The potential (B,) from flat cell `start`, with the entry weights and the blocked cost."""
-    # One allocation for the potential, 5 weights and 8 running sums: as 14 arrays of their own
-    # they cost more in fresh-page faults than the sweeps themselves (measured: 400 x 600 cells).
-    work = np.empty((14, layout.costs.size), dtype=np.intp)
-    weights, blocked = _entry_weights(layout, work[1:6])
-    if (layout.costs.size + 2) * blocked >= np.iinfo(np.intp).max:
-        raise ValueError(f"a costmap of {layout.cols} x {layout.rows} cells is too large to plan")
-    potential = work[0]
-    potential.fill(blocked)
-    potential[start] = 0
-    sweeps = [
-        _Sweep.along(layout, potential, step, weights, work[6 + 2 * i : 8 + 2 * i])
-        for i, step in enumerate(weights)
-    ]
-    _settle(potential, sweeps, blocked, int(np.count_nonzero(layout.costs)) + 2)
+    """The potential (B,) from flat cell `start`, by the compiled Dijkstra, with the entry
+    weights the descent reads and the blocked cost."""
+    steps = axis_of, diagonal_of, blocked = _step_costs(layout)
+    weights = _entry_weights(layout, steps, np.empty((5, layout.costs.size), dtype=np.intp))
+    potential = np.empty(layout.costs.size, dtype=np.intp)
+    cheapest_costs(layout.costs, layout.width, axis_of, diagonal_of, blocked, start, potential)
     return potential, weights, blocked
-
-
-def _settle(potential: IntArray, sweeps: list[_Sweep], blocked: int, cap: int) -> None:
-    """Sweep all 8 directions until the potential (B,) stops changing.
-
-    A round settles at least one more straight segment of every cheapest path, and a path has
-    fewer segments than there are enterable cells: reaching `cap` rounds is a bug.
-    """
-    total = int(potential.sum())
-    for _ in range(cap):
-        for sweep in sweeps:
-            sweep.relax()
-        # Sums through a blocked cell are no paths. Clamped, they cannot pose a cheapest-path
-        # problem of their own to settle, nor push the sum of the potential past int64.
-        np.minimum(potential, blocked, out=potential)
-        # No cell's potential ever rises, so an unchanged sum means no cell changed.
-        total, before = int(potential.sum()), total
-        if total == before:
-            return
-    raise RuntimeError(f"the navfn potential did not settle in {cap} rounds: a bug")
 
 
 def potential(costs: npt.ArrayLike, start: tuple[int, int], settings: NavfnSettings) -> IntArray:
@@ -287,8 +209,8 @@ def _descend(layout: _Layout, potential: IntArray, weights: _Weights, end: int) 
     Each cell's predecessor is the neighbour its potential was reached from, the first of them in
     a fixed order; the potential (B,) falls strictly along the way, so no cell repeats.
     """
-    # Off the grid lie the frame's blocked cells (before the first cell, the buffer's blocked
-    # tail, by negative index): valid to read, and never the cheapest.
+    # Off the grid lie the frame's blocked cells (before the first cell, the frame's last cell
+    # by negative index): valid to read, and never the cheapest.
     moves = [(-step, forward) for step, (forward, _) in weights.items()]
     moves += [(step, backward) for step, (_, backward) in weights.items()]
     path = [end]

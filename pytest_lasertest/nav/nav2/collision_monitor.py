@@ -2,7 +2,8 @@
 the scan, slowing the command so that the robot reaches an obstacle no sooner than
 time_before_collision (nav2_collision_monitor at jazzy f4108e5b: src/collision_monitor_node.cpp
 processApproach, src/polygon.cpp getCollisionTime and isPointInside, src/kinematics.cpp,
-src/scan.cpp; nav2_params.yaml's collision_monitor). Our own numpy code.
+src/scan.cpp; nav2_params.yaml's collision_monitor). Our own code: numpy here, and the loop that
+runs every control cycle compiled in kernels.py.
 
 The scan's readings with range_min <= r <= range_max (inclusive, unlike the costmap's
 laser_geometry projection) become points in the base frame, whatever the scanner's height: a
@@ -21,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.nav.nav2.kernels import NO_COLLISION, collision_time, count_inside
 from pytest_lasertest.nav.protocol import LaserScan
 
 Command = tuple[float, float]  # m/s, rad/s
@@ -63,10 +65,18 @@ def _process_approach(
 ) -> Command:
     """processApproach: stop if min_points lie in the footprint now, else slow the command by
     the time of the first step whose footprint holds them."""
-    if _inside(points, footprint) >= settings.min_points:
+    points, footprint = np.ascontiguousarray(points), np.ascontiguousarray(footprint)
+    if count_inside(points, footprint, 0.0, 0.0, 0.0) >= settings.min_points:
         return 0.0, 0.0
-    collision = _collision_time(command, points, footprint, settings)
-    if collision is None:
+    collision = collision_time(
+        *command,
+        points,
+        footprint,
+        settings.simulation_time_step,
+        settings.time_before_collision,
+        settings.min_points,
+    )
+    if collision == NO_COLLISION:
         return command
     ratio = collision / settings.time_before_collision
     return command[0] * ratio, command[1] * ratio
@@ -86,17 +96,18 @@ def _reachable(
     return near
 
 
-def _collision_time(
+def collision_time_of(
     command: Command, points: FloatArray, footprint: FloatArray, settings: CollisionMonitorSettings
 ) -> float | None:
     """getCollisionTime: the robot moved at the command, step by step, the velocity turning
-    with it; the time of the first step whose footprint holds min_points, or None."""
+    with it; the time of the first step whose footprint holds min_points, or None. In numpy, as
+    the reference of kernels.collision_time, which runs it."""
     pose: Pose = (0.0, 0.0, 0.0)
     velocity: Velocity = (command[0], 0.0, command[1])
     dt, time = settings.simulation_time_step, 0.0
     while time <= settings.time_before_collision:  # the time accumulates as Nav2's loop does
         pose, velocity = project_state(dt, pose, velocity)
-        if _inside(transform_points(pose, points), footprint) >= settings.min_points:
+        if inside(transform_points(pose, points), footprint) >= settings.min_points:
             return time
         time += dt
     return None
@@ -119,8 +130,9 @@ def project_state(dt: float, pose: Pose, velocity: Velocity) -> tuple[Pose, Velo
     return moved, (x * cos - y * sin, x * sin + y * cos, turn_rate)
 
 
-def _inside(points: FloatArray, polygon: FloatArray) -> int:
-    """How many points (P, 2) lie inside the polygon (V, 2), by isPointInside's ray crossings."""
+def inside(points: FloatArray, polygon: FloatArray) -> int:
+    """How many points (P, 2) lie inside the polygon (V, 2), by isPointInside's ray crossings. In
+    numpy, as the reference of kernels.count_inside, which runs it."""
     if not len(points):
         return 0
     px, py = points[:, 0:1], points[:, 1:2]  # (P, 1)

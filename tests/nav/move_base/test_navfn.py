@@ -145,7 +145,7 @@ def test_the_potential_equals_a_brute_force_dijkstra_on_random_grids(seed: int) 
 
 def test_the_potential_settles_along_a_winding_corridor() -> None:
     # A serpentine: every other column a wall, open alternately at the top and the bottom, so
-    # the cheapest paths turn many times; the sweeps would raise had they hit their round cap.
+    # the cheapest paths turn many times.
     costs = np.zeros((15, 31), dtype=np.uint8)
     for x in range(1, 31, 2):
         costs[:, x] = LETHAL

@@ -1,15 +1,22 @@
-"""Compiled kernels of clearance.py: the least signed distance from a footprint, over each group
-of poses, to lethal cell centres, measuring only the cells that can be nearest.
+"""Compiled kernels of move_base's planners: navfn's potential (navfn.py) and DWA's footprint
+check (clearance.py).
 
-The cells are grouped in squares. The signed distance is a maximum of functions of slope 1, so
-it changes by no more than a point moves: a square's cells lie within its radius of its
-centre, and lie no nearer than the centre's signed distance less that radius. At each pose
-every square's bound is taken (the edge lines turned into the odom frame once per pose, five
-operations an edge), the square with the least bound is measured first, and then only the
-squares whose bound is below the least so far; a group's least carries from pose to pose. A
-cell that is measured is measured by the operations of clearance.py's docstring, in their
-order, with no fused multiply-add (numba compiles without fastmath), so the least is the direct
-computation's to the bit; tests/nav/move_base/test_clearance.py holds them equal.
+navfn's potential is each cell's cheapest-path cost from the start, found by Dijkstra's
+algorithm over the integer entry costs navfn.py lays out. Cheapest-path costs are unique, so any
+correct search finds these to the unit; tests/nav/move_base/test_navfn.py holds them to a plain
+Python Dijkstra's.
+
+The footprint check takes the least signed distance from a footprint, over each group of poses,
+to lethal cell centres, measuring only the cells that can be nearest. The cells are grouped in
+squares. The signed distance is a maximum of functions of slope 1, so it changes by no more than
+a point moves: a square's cells lie within its radius of its centre, and lie no nearer than the
+centre's signed distance less that radius. At each pose every square's bound is taken (the edge
+lines turned into the odom frame once per pose, five operations an edge), the square with the
+least bound is measured first, and then only the squares whose bound is below the least so far;
+a group's least carries from pose to pose. A cell that is measured is measured by the operations
+of clearance.py's docstring, in their order, with no fused multiply-add (numba compiles without
+fastmath), so the least is the direct computation's to the bit;
+tests/nav/move_base/test_clearance.py holds them equal.
 
 numba compiles these when this module is imported (each for the one signature it is called
 with), outside any controller call's time, and keeps the machine code in __pycache__: the first
@@ -18,18 +25,19 @@ import on a machine takes about 10 s, later ones a fraction of a second.
 
 from __future__ import annotations
 
+import heapq
 from collections.abc import Callable
 from typing import Any, TypeVar, cast
 
 import numba
 import numpy as np
 
-from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.model.geometry import FloatArray, IntArray
 
 Function = TypeVar("Function", bound=Callable[..., Any])
 
 
-def _compiled(signature: str | None = None) -> Callable[[Function], Function]:
+def compiled(signature: str | None = None) -> Callable[[Function], Function]:
     """Compile a function in nopython mode, its machine code cached on disk: now, for
     `signature`, or else for the types of whatever compiled function calls it."""
 
@@ -41,11 +49,53 @@ def _compiled(signature: str | None = None) -> Callable[[Function], Function]:
     return compile_for
 
 
-# numba's types: f8 is a float64, i8 an int64, [::1] a C-contiguous axis.
+# numba's types: f8 is a float64, i8 an int64, u1 a byte, [::1] a C-contiguous axis.
 CELLS = "f8[:, ::1]"  # (N, 2) m
 
 
-@_compiled()
+@compiled("void(u1[::1], i8, i8[::1], i8[::1], i8, i8, i8[::1])")
+def cheapest_costs(
+    costs: Any,
+    width: int,
+    axis_of: IntArray,
+    diagonal_of: IntArray,
+    blocked: int,
+    start: int,
+    potential: IntArray,
+) -> None:
+    """Fill `potential` (B,) with the cheapest cost of reaching each flat cell from `start`, or
+    `blocked` where none: over navfn's entry costs (B,) (0: never entered), rows of `width`
+    cells, a step into a cell of cost c costing axis_of[c] along an axis and diagonal_of[c]
+    diagonally, a diagonal step only between two enterable cells beside it."""
+    potential[:] = blocked
+    potential[start] = 0
+    # The 8 steps: the flat offset, and its parts along x and along y (0 along an axis).
+    steps = np.array(
+        [[1, 0, 0], [-1, 0, 0], [width, 0, 0], [-width, 0, 0]]
+        + [[s * (width + t), s * t, s * width] for s in (1, -1) for t in (1, -1)],
+        dtype=np.int64,
+    )
+    heap = [(np.int64(0), np.int64(start))]
+    while heap:
+        cost, cell = heapq.heappop(heap)
+        if cost > potential[cell]:
+            continue  # reached more cheaply since it was queued
+        for step, along_x, along_y in steps:
+            entered = cell + step
+            if entered < 0 or entered >= len(costs) or costs[entered] == 0:
+                continue
+            if along_x == 0:
+                reached = cost + axis_of[costs[entered]]
+            elif costs[cell + along_x] == 0 or costs[cell + along_y] == 0:
+                continue  # a diagonal step may not cut a blocked cell's corner
+            else:
+                reached = cost + diagonal_of[costs[entered]]
+            if reached < potential[entered]:
+                potential[entered] = reached
+                heapq.heappush(heap, (reached, entered))
+
+
+@compiled()
 def _squares(lethal: FloatArray, side: float, rounding: float) -> tuple[Any, ...]:
     """The cells (N, 2) grouped by the `side` m square of the plane each lies in: the cells' x
     and y (N,) m in square order, where each square starts among them (B + 1,), its centre's x
@@ -73,7 +123,7 @@ def _squares(lethal: FloatArray, side: float, rounding: float) -> tuple[Any, ...
     return cell_x, cell_y, np.array(starts), centre_x, centre_y, radius
 
 
-@_compiled()
+@compiled()
 def _bounds(
     turned: FloatArray,
     centre_x: FloatArray,
@@ -96,7 +146,7 @@ def _bounds(
     return int(np.argmin(lower))
 
 
-@_compiled()
+@compiled()
 def _measure(
     normals: FloatArray,
     frame: FloatArray,
@@ -124,7 +174,7 @@ def _measure(
     return best
 
 
-@_compiled()
+@compiled()
 def _least_of_group(
     normals: FloatArray,
     offsets: FloatArray,
@@ -153,7 +203,7 @@ def _least_of_group(
     return best
 
 
-@_compiled()
+@compiled()
 def _frame(
     normals: FloatArray,
     offsets: FloatArray,
@@ -180,7 +230,7 @@ def _frame(
         turned[2, edge] = turned[0, edge] * x + turned[1, edge] * y + grown[edge]
 
 
-@_compiled()
+@compiled()
 def _repeats(poses: FloatArray, pose: int) -> bool:
     """Whether `pose` is the pose before it, grown alike."""
     before = pose - 1
@@ -192,7 +242,7 @@ def _repeats(poses: FloatArray, pose: int) -> bool:
     )
 
 
-@_compiled(f"f8[::1]({CELLS}, f8[::1], f8[:, ::1], i8, {CELLS}, f8, f8)")
+@compiled(f"f8[::1]({CELLS}, f8[::1], f8[:, ::1], i8, {CELLS}, f8, f8)")
 def least_per_group(
     normals: FloatArray,
     offsets: FloatArray,
@@ -219,7 +269,7 @@ def least_per_group(
     return least
 
 
-@_compiled(f"b1[::1]({CELLS}, {CELLS}, f8)")
+@compiled(f"b1[::1]({CELLS}, {CELLS}, f8)")
 def any_within(points: FloatArray, lethal: FloatArray, reach: float) -> Any:
     """Whether a lethal cell centre (N, 2) m lies within `reach` m of each point (P, 2) m, shape
     (P,): the distance as numpy's hypot takes it (both call the C library's), and a cell
