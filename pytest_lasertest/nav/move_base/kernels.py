@@ -53,7 +53,7 @@ def compiled(signature: str | None = None) -> Callable[[Function], Function]:
 CELLS = "f8[:, ::1]"  # (N, 2) m
 
 
-@compiled("void(u1[::1], i8, i8[::1], i8[::1], i8, i8, i8[::1])")
+@compiled("void(u1[::1], i8, i8[::1], i8[::1], i8, i8, i8, i8[::1])")
 def cheapest_costs(
     costs: Any,
     width: int,
@@ -61,12 +61,17 @@ def cheapest_costs(
     diagonal_of: IntArray,
     blocked: int,
     start: int,
+    goal: int,
     potential: IntArray,
 ) -> None:
     """Fill `potential` (B,) with the cheapest cost of reaching each flat cell from `start`, or
     `blocked` where none: over navfn's entry costs (B,) (0: never entered), rows of `width`
     cells, a step into a cell of cost c costing axis_of[c] along an axis and diagonal_of[c]
-    diagonally, a diagonal step only between two enterable cells beside it."""
+    diagonally, a diagonal step only between two enterable cells beside it.
+
+    Once cell `goal` is settled (-1: never) the search stops: every cell cheaper than the goal
+    is exact, and every other no cheaper than the goal, which is all a descent from the goal
+    reads."""
     potential[:] = blocked
     potential[start] = 0
     # The 8 steps: the flat offset, and its parts along x and along y (0 along an axis).
@@ -80,6 +85,8 @@ def cheapest_costs(
         cost, cell = heapq.heappop(heap)
         if cost > potential[cell]:
             continue  # reached more cheaply since it was queued
+        if cell == goal:
+            return
         for step, along_x, along_y in steps:
             entered = cell + step
             if entered < 0 or entered >= len(costs) or costs[entered] == 0:

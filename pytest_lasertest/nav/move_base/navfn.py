@@ -162,13 +162,16 @@ def _entry_weights(
     return weights
 
 
-def _flat_potential(layout: _Layout, start: int) -> tuple[IntArray, _Weights, int]:
+def _flat_potential(layout: _Layout, start: int, goal: int = -1) -> tuple[IntArray, _Weights, int]:
     """The potential (B,) from flat cell `start`, by the compiled Dijkstra, with the entry
-    weights the descent reads and the blocked cost."""
+    weights the descent reads and the blocked cost: exact for every cell if `goal` is -1, else
+    for the cells no dearer than flat cell `goal` (the others no cheaper than it)."""
     steps = axis_of, diagonal_of, blocked = _step_costs(layout)
     weights = _entry_weights(layout, steps, np.empty((5, layout.costs.size), dtype=np.intp))
     potential = np.empty(layout.costs.size, dtype=np.intp)
-    cheapest_costs(layout.costs, layout.width, axis_of, diagonal_of, blocked, start, potential)
+    cheapest_costs(
+        layout.costs, layout.width, axis_of, diagonal_of, blocked, start, goal, potential
+    )
     return potential, weights, blocked
 
 
@@ -240,7 +243,9 @@ def plan_path(
     layout.check(goal, "goal")
     if not resolution > 0.0:
         raise ValueError(f"the resolution must be positive, not {resolution} m per cell")
-    flat, weights, blocked = _flat_potential(layout, layout.index(start))
+    # Where the goal is reached, the search stops there: it is the nearest reached cell, and
+    # its descent reads only cells cheaper than it. Where not, the search covers every cell.
+    flat, weights, blocked = _flat_potential(layout, layout.index(start), layout.index(goal))
     reach = math.floor(settings.default_tolerance / resolution + 1e-9)
     end = _nearest_reached(layout.grid(flat), blocked, goal, reach)
     if end is None:

@@ -52,6 +52,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pytest_lasertest.nav.nav2 import kernels
 from pytest_lasertest.nav.nav2.dwb_critics import (
     F64,
     Bools,
@@ -213,15 +214,33 @@ def rollout_poses(s: DwbSettings) -> int:
 
 def roll_out(s: DwbSettings, pose: Pose, speed: tuple[float, float], vx: F64, wz: F64) -> Rollouts:
     """generateTrajectory for every command (K,), N = 1 + the most steps poses each, one more
-    with include_last_point (the last repeated). Time-major inside, (S, K), where a running sum
-    adds whole rows; the critics read (K, N) views."""
+    with include_last_point (the last repeated), compiled (kernels.roll_out)."""
+    limits = (s.sim_time, s.acc_lim_x, s.decel_lim_x, s.acc_lim_theta, s.decel_lim_theta)
+    steps = _time_steps(s, vx, wz)
+    start = (float(pose[0]), float(pose[1]), float(pose[2]))
+    moving = (float(speed[0]), float(speed[1]))
+    x, y, yaw = kernels.roll_out(start, moving, vx, wz, steps, limits, s.include_last_point)
+    return Rollouts(vx, wz, x, y, yaw)
+
+
+def _time_steps(s: DwbSettings, vx: F64, wz: F64) -> F64:
+    """getTimeSteps: how many steps each command's trajectory takes, (K,)."""
     steps = np.ceil(
         np.maximum(
             np.abs(vx) * s.sim_time / s.linear_granularity,
             np.abs(wz) * s.sim_time / s.angular_granularity,
         )
     )
-    steps = np.maximum(steps, 1.0)  # getTimeSteps makes one step of none
+    found: F64 = np.maximum(steps, 1.0)  # getTimeSteps makes one step of none
+    return found
+
+
+def roll_out_in_numpy(
+    s: DwbSettings, pose: Pose, speed: tuple[float, float], vx: F64, wz: F64
+) -> Rollouts:
+    """roll_out in numpy, the reference its kernel is tested against: time-major inside,
+    (S, K), where a running sum adds whole rows; the critics read (K, N) views."""
+    steps = _time_steps(s, vx, wz)
     dt = s.sim_time / steps  # (K,) s
     moving = np.arange(1.0, steps.max(initial=1.0) + 1.0)[:, np.newaxis] <= steps  # (S, K)
     linear = _ramp(speed[0], vx, s.acc_lim_x, s.decel_lim_x, dt, moving.shape)

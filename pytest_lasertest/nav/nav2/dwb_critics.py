@@ -5,7 +5,8 @@ nav2_dwb_controller/: dwb_critics/src/rotate_to_goal.cpp, oscillation.cpp, base_
 map_grid.cpp, path_dist.cpp, goal_dist.cpp, path_align.cpp, goal_align.cpp, alignment_util.cpp;
 costmap_queue/src/costmap_queue.cpp and include/costmap_queue/map_based_queue.hpp (the
 propagation); nav_2d_utils/src/path_ops.cpp (adjustPlanResolution); and
-nav2_costmap_2d/src/costmap_2d.cpp (worldToMap). Our own numpy code; `dwb.py` runs the critics.
+nav2_costmap_2d/src/costmap_2d.cpp (worldToMap). Our own numpy code, its distance transform
+compiled; `dwb.py` runs the critics.
 
 Each critic gives, for K trajectories, a raw score and which are legal (DWB's
 IllegalTrajectoryException):
@@ -29,14 +30,14 @@ IllegalTrajectoryException):
   starts from the local goal moved forward_point_distance further along the bearing from the
   robot to the goal.
 
-The MapGrid critics' breadth-first queue (MapGridQueue::validCellToQueue) accepts every cell, so
-in Humble the distances cross obstacles and unknown space alike, despite its header's comment;
-unknown cells only keep plan points from being sources. The queue pops cells by Manhattan
-distance from their source and gives each the distance from the source that reached it first,
-which on an unobstructed 4-connected grid is the Manhattan distance to the nearest source: here a
-separable L1 distance transform gives the same grid. No Humble critic marks obstacle cells
-(setAsObstacle is never called), so "unreachable" (cells + 1) is the only failing value, found
-everywhere when no source cell was found (prepare failed; DWB only warns).
+The MapGrid critics' breadth-first queue (MapGridQueue::validCellToQueue) accepts every cell, so in
+Humble the distances cross obstacles and unknown space alike, despite its header's comment; unknown
+cells only keep plan points from being sources. The queue pops cells by Manhattan distance from
+their source and gives each the distance from the source that reached it first, which on an
+unobstructed 4-connected grid is the Manhattan distance to the nearest source: here a separable L1
+distance transform (compiled, kernels.l1_distances) gives the same grid. No Humble critic marks
+obstacle cells (setAsObstacle is never called), so "unreachable" (cells + 1) is the only failing
+value, found everywhere when no source cell was found (prepare failed; DWB only warns).
 """
 
 from __future__ import annotations
@@ -50,12 +51,15 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.nav2.kernels import cells_under, l1_distances, read_every_pose
 from pytest_lasertest.nav.nav2.mppi import CostGrid
 
 F64 = npt.NDArray[np.float64]
 Bools = npt.NDArray[np.bool_]
 Ints = npt.NDArray[np.int64]
 Pose = tuple[float, float, float]  # m, m, rad
+# The costs a pose may not stand on: BaseObstacleCritic's lethal, inscribed and no information.
+UNDRIVABLE = np.array([LETHAL, INSCRIBED, UNKNOWN], dtype=np.float64)
 
 
 @dataclass(frozen=True)
@@ -113,9 +117,14 @@ class Frame:
     forward_point_distance: tuple[float, float]  # m, PathAlign's and GoalAlign's
 
     @functools.cached_property
-    def cells(self) -> Cells:
-        """The cells under every pose of every trajectory, (K, N)."""
-        return world_to_map(self.grid, self.rollouts.x, self.rollouts.y)
+    def cells(self) -> Ints:
+        """The flat cell (row x width + column) under every pose of every trajectory, -1 off
+        the grid, (K, N)."""
+        height, width = self.grid.costs.shape
+        x, y = (np.ascontiguousarray(axis) for axis in (self.rollouts.x, self.rollouts.y))
+        origin, resolution = self.grid.origin, self.grid.resolution
+        found: Ints = cells_under(x, y, origin[0], origin[1], resolution, height, width)
+        return found
 
     @functools.cached_property
     def unreachable(self) -> float:
@@ -188,32 +197,17 @@ def manhattan_distances(
     shape: tuple[int, int], rows: Ints, columns: Ints, unreachable: float
 ) -> F64:
     """The Manhattan distance (cells) from every cell of a grid (H, W) to the nearest source
-    cell, `unreachable` everywhere without a source."""
+    cell, `unreachable` everywhere without a source (compiled: kernels.l1_distances)."""
     if not len(rows):
         return np.full(shape, unreachable)
-    distances = np.full(shape, np.inf)
-    distances[rows, columns] = 0.0
-    return _l1_along(_l1_along(distances, axis=1), axis=0)
-
-
-def _l1_along(values: F64, axis: int) -> F64:
-    """min over j of values[j] + |i - j| along `axis`: the least of values[j] - j up to i, plus
-    i, against the least of values[j] + j from i on, minus i."""
-    index = np.arange(values.shape[axis], dtype=np.float64)
-    index = index[:, np.newaxis] if axis == 0 else index[np.newaxis, :]
-    before = np.minimum.accumulate(values - index, axis=axis) + index
-    after = np.flip(np.minimum.accumulate(np.flip(values + index, axis), axis=axis), axis)
-    found: F64 = np.minimum(before, after - index)
-    return found
+    return l1_distances(shape[0], shape[1], rows.astype(np.int64), columns.astype(np.int64))
 
 
 def base_obstacle(frame: Frame) -> Scored:
     """BaseObstacleCritic: every pose's cell must be on the grid and drivable; the last one's
     cost is the score."""
-    cells, costs = frame.cells, frame.grid.costs
-    found = costs[cells.row, cells.column]  # (K, N)
-    drivable = (found != LETHAL) & (found != INSCRIBED) & (found != UNKNOWN) & cells.on
-    return Scored(found[:, -1].astype(np.float64), drivable.all(axis=1))
+    costs = frame.grid.costs.ravel().astype(np.float64)
+    return Scored(*read_every_pose(frame.cells, costs, UNDRIVABLE))
 
 
 def path_dist(frame: Frame) -> Scored:
@@ -238,10 +232,8 @@ def goal_align(frame: Frame) -> Scored:
 
 def _under_every_pose(frame: Frame, distances: F64) -> Scored:
     """MapGridCritic with stop_on_failure and aggregation last."""
-    cells = frame.cells
-    found = distances[cells.row, cells.column]  # (K, N)
-    legal = (cells.on & (found != frame.unreachable)).all(axis=1)
-    return Scored(found[:, -1], legal)
+    failing = np.array([frame.unreachable])
+    return Scored(*read_every_pose(frame.cells, distances.ravel(), failing))
 
 
 def _ahead_of_last_pose(frame: Frame, distances: F64, reach: float) -> Scored:

@@ -143,6 +143,23 @@ def test_the_potential_equals_a_brute_force_dijkstra_on_random_grids(seed: int) 
     assert (potential(costs, start, settings) == dijkstra(costs, start, settings)).all()
 
 
+@pytest.mark.parametrize("seed", range(30))
+def test_a_plan_to_a_reached_goal_costs_the_brute_force_potential_at_the_goal(seed: int) -> None:
+    # The search stops once the goal is settled: the descent must still find a cheapest path.
+    rng = np.random.default_rng(seed)
+    costs = random_costmap(rng, rows=20, cols=25)
+    costs[costs == UNKNOWN] = FREE  # fewer cells walled off, more goals reached
+    start, goal = ((int(rng.integers(25)), int(rng.integers(20))) for _ in range(2))
+    reached = dijkstra(costs, start, SETTINGS)[goal[1], goal[0]]
+    path = plan_path(costs, start, goal, SETTINGS, RESOLUTION)
+    if reached == UNREACHABLE:
+        assert path is None or tuple(path[-1]) != goal
+        return
+    assert path is not None
+    assert_chain(path, start, goal)
+    assert path_cost(costs, path, SETTINGS) == reached
+
+
 def test_the_potential_settles_along_a_winding_corridor() -> None:
     # A serpentine: every other column a wall, open alternately at the top and the bottom, so
     # the cheapest paths turn many times.

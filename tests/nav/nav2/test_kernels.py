@@ -1,5 +1,6 @@
-"""The collision monitor's compiled loop gives the numpy code's answers to the bit: the count of
-points inside a footprint at a pose, and the time of the first step that holds min_points."""
+"""The Nav2 stack's compiled loops give the numpy code's answers to the bit: the collision
+monitor's count of points inside a footprint at a pose and the time of the first step that
+holds min_points, and DWB's rollouts."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from pytest_lasertest.nav.nav2.collision_monitor import (
     inside,
     transform_points,
 )
+from pytest_lasertest.nav.nav2.dwb import DwbSettings, roll_out, roll_out_in_numpy, sample_twists
 from pytest_lasertest.nav.nav2.kernels import NO_COLLISION, collision_time, count_inside
 
 # A Husky-sized box and a concave outline with edges level with each other, where ray
@@ -56,3 +58,23 @@ def test_the_collision_time_is_the_numpy_loops_to_the_bit(footprint: np.ndarray,
         assert time == (NO_COLLISION if expected is None else expected)
         found += expected is not None
     assert 10 < found < 90  # both answers were compared, often
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_dwbs_compiled_rollouts_are_the_numpy_rollouts_to_the_bit(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    settings = DwbSettings(
+        include_last_point=bool(seed % 2),
+        sim_time=float(rng.uniform(0.5, 2.0)),
+        decel_lim_x=float(rng.uniform(-3.0, -0.5)),
+        acc_lim_theta=float(rng.uniform(0.5, 4.0)),
+    )
+    for _ in range(20):
+        pose = (float(rng.uniform(-5, 5)), float(rng.uniform(-5, 5)), float(rng.uniform(-4, 4)))
+        speed = (float(rng.uniform(-0.2, 0.6)), float(rng.uniform(-1.0, 1.0)))
+        vx, wz = sample_twists(settings, speed)
+        compiled, expected = (
+            way(settings, pose, speed, vx, wz) for way in (roll_out, roll_out_in_numpy)
+        )
+        for name in ("x", "y", "yaw"):
+            assert np.array_equal(getattr(compiled, name), getattr(expected, name)), name
