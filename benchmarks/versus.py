@@ -1,17 +1,17 @@
 """The same drives timed in two checkouts side by side: how many times faster this one drives.
 
-Each drive is a controller in a world for 30 s of simulated time: the Husky with the paper's
-720-beam scanner under move_base, under Nav2 with Jazzy's nav2_params.yaml (MPPI) and under Nav2
-with the Husky's own parameters (DWB), past one box in its way, past two obstacles, and down the
-warehouse aisle of examples/worlds. Every round runs all drives in one fresh process of each
-checkout in turn (the other checkout's package first on the path, its own examples read), after
-one short drive that pays for imports and numba's compiling; that start-up is timed apart.
+Each drive is a controller in a world for 30 s of simulated time (`--seconds`): the Husky with the
+paper's 720-beam scanner under move_base, under Nav2 with Jazzy's nav2_params.yaml (MPPI) and under
+Nav2 with the Husky's own parameters (DWB), past one box in its way, past two obstacles, and down
+the warehouse aisle of examples/worlds. Every round runs all drives in one fresh process of each
+checkout in turn (the other checkout's package first on the path, its own examples read), after one
+short drive that pays for imports and numba's compiling; that start-up is timed apart.
 
 Printed per drive: the median seconds in each checkout, their ratio, and whether the two
 trajectories hash alike (a speed-up that keeps the trajectories shows `same`; the old checkout's
 own behaviour may differ where a later change meant it to). Then the totals.
 
-    python benchmarks/versus.py OLD_CHECKOUT [--rounds 3]
+    python benchmarks/versus.py OLD_CHECKOUT [--rounds 3] [--seconds 30]
 """
 
 from __future__ import annotations
@@ -77,20 +77,20 @@ with PhysicsClient() as client:
     for cname, make in controllers.items():
         for wname, world in worlds.items():
             began = time.perf_counter()
-            run = run_scenario(scenario(world, 30.0), make, client)
+            run = run_scenario(scenario(world, float(sys.argv[2])), make, client)
             seconds = time.perf_counter() - began
             drive = f"{cname}, {wname}"
             print(json.dumps({"drive": drive, "s": seconds, "digest": run.digest()}), flush=True)
 """
 
 
-def one_round(checkout: Path) -> dict[str, tuple[float, str]]:
-    """Every drive once in a fresh process of `checkout`: seconds and trajectory hash by
-    drive, and the start-up under 'start-up'."""
+def one_round(checkout: Path, simulated: float) -> dict[str, tuple[float, str]]:
+    """Every drive once, for `simulated` s at most, in a fresh process of `checkout`: seconds
+    and trajectory hash by drive, and the start-up under 'start-up'."""
     environment = {**os.environ, "PYTHONPATH": str(checkout)}
     with tempfile.TemporaryDirectory() as elsewhere:  # not this checkout's folder on the path
         done = subprocess.run(
-            [sys.executable, "-c", DRIVES, str(checkout)],
+            [sys.executable, "-c", DRIVES, str(checkout), str(simulated)],
             cwd=elsewhere,
             env=environment,
             capture_output=True,
@@ -111,12 +111,13 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("old", type=Path, help="the other checkout, e.g. a git worktree")
     parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--seconds", type=float, default=30.0, help="simulated, per drive")
     args = parser.parse_args()
     checkouts = {"old": args.old.resolve(), "new": REPO}
     rounds: dict[str, list[dict[str, tuple[float, str]]]] = {name: [] for name in checkouts}
     for _ in range(args.rounds):
         for name, checkout in checkouts.items():  # in turn, so that load drifts on both
-            rounds[name].append(one_round(checkout))
+            rounds[name].append(one_round(checkout, args.seconds))
     print(f"old: {checkouts['old']}; new: {checkouts['new']}; {args.rounds} rounds, medians")
     print(f"{'drive':40s} {'old s':>7s} {'new s':>7s} {'ratio':>6s}  trajectory")
     totals = dict.fromkeys(checkouts, 0.0)

@@ -177,3 +177,14 @@ def test_the_verdicts_benchmark_runs_a_file_twice_as_ci_does() -> None:
         "in some only: none",
         "items whose outcome changes between runs: 0 of 3; failing items: 0 (in every run: 0)",
     ]
+
+
+VERSUS_LINE = re.compile(r"all drives +[\d.]+ +[\d.]+ +[\d.]+x")
+
+
+def test_the_side_by_side_benchmark_finds_a_checkout_drives_as_itself() -> None:
+    lines = printed("benchmarks/versus.py", str(REPO), "--rounds", "1", "--seconds", "3")
+    assert VERSUS_LINE.fullmatch(lines[-1])
+    drives = lines[3:-1]
+    assert len(drives) == 9  # three stacks in three worlds
+    assert all(line.endswith("x  same") for line in drives)
