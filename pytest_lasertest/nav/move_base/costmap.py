@@ -37,6 +37,7 @@ from pytest_lasertest.model.geometry import FloatArray, IntArray
 from pytest_lasertest.model.occupancy import OccupancyGrid
 from pytest_lasertest.model.route import place
 from pytest_lasertest.nav.move_base.cost_values import FREE, INSCRIBED, LETHAL, UNKNOWN, Grid
+from pytest_lasertest.nav.move_base.kernels import distances_to_lethal
 from pytest_lasertest.nav.move_base.static_layer import StaticLayer, StaticLayerSettings, with_max
 from pytest_lasertest.nav.protocol import LaserScan
 from pytest_lasertest.nav.raytrace import clipped, ray_indices
@@ -334,24 +335,9 @@ def _overlap(shift: int, cells: int) -> slice:
 
 def lethal_distances(lethal: npt.NDArray[np.bool_], reach: int) -> FloatArray:
     """Each cell's distance in cells to the nearest lethal cell, shape (N, N): exact up to
-    `reach`, and more than `reach` (or inf) beyond it.
-
-    Separable: the distance along each column first, then the least of
-    dx^2 + column distance^2 over the columns within `reach` either side.
+    `reach`, and more than `reach` (or inf) beyond it (compiled: kernels.distances_to_lethal).
     """
-    rows = lethal.shape[0]
-    index = np.arange(rows)[:, np.newaxis]
-    far = rows + reach + 1
-    above = np.maximum.accumulate(np.where(lethal, index, -far), axis=0)
-    below = np.flip(np.minimum.accumulate(np.flip(np.where(lethal, index, 2 * far), 0), 0), 0)
-    column = np.minimum(index - above, below - index).astype(np.float64)
-    column[column > reach] = np.inf
-    squared = column**2
-    best = squared.copy()
-    for shift in range(1, reach + 1):
-        best[:, shift:] = np.minimum(best[:, shift:], squared[:, :-shift] + shift**2)
-        best[:, :-shift] = np.minimum(best[:, :-shift], squared[:, shift:] + shift**2)
-    distance: FloatArray = np.sqrt(best)
+    distance: FloatArray = distances_to_lethal(np.ascontiguousarray(lethal), reach)
     return distance
 
 

@@ -1,10 +1,14 @@
-"""Compiled kernels of move_base's planners: navfn's potential (navfn.py) and DWA's footprint
-check (clearance.py).
+"""Compiled kernels of move_base's planners: navfn's potential and its descent (navfn.py), the
+inflation's distances to lethal cells (costmap.py) and DWA's footprint check (clearance.py).
 
 navfn's potential is each cell's cheapest-path cost from the start, found by Dijkstra's
 algorithm over the integer entry costs navfn.py lays out. Cheapest-path costs are unique, so any
 correct search finds these to the unit; tests/nav/move_base/test_navfn.py holds them to a plain
-Python Dijkstra's.
+Python Dijkstra's. The descent takes each cell's first cheapest predecessor in a fixed order,
+as the numpy code did.
+
+The inflation's distances are whole squared distances added and rooted, exact in any order:
+the numpy code's to the bit, which tests/nav/move_base/test_costmap.py holds.
 
 The footprint check takes the least signed distance from a footprint, over each group of poses,
 to lethal cell centres, measuring only the cells that can be nearest. The cells are grouped in
@@ -26,6 +30,7 @@ import on a machine takes about 10 s, later ones a fraction of a second.
 from __future__ import annotations
 
 import heapq
+import math
 from collections.abc import Callable
 from typing import Any, TypeVar, cast
 
@@ -100,6 +105,81 @@ def cheapest_costs(
             if reached < potential[entered]:
                 potential[entered] = reached
                 heapq.heappush(heap, (reached, entered))
+
+
+@compiled("i8[::1](u1[::1], i8, i8[::1], i8[::1], i8[::1], i8)")
+def descend(
+    costs: Any, width: int, axis_of: IntArray, diagonal_of: IntArray, potential: IntArray, end: int
+) -> IntArray:
+    """The flat cells (K,) of a cheapest path from the potential's zero to flat cell `end`: each
+    cell's predecessor the neighbour its potential was reached from, the first such in the
+    order -1, -width, -(width + 1), -(width - 1), then the same steps forward. The entry costs
+    are cheapest_costs's; the potential (B,) falls strictly along the way."""
+    # The steps to the predecessor: the flat offset, and its parts along x and y (0: an axis).
+    steps = np.array(
+        [
+            [-1, 0, 0],
+            [-width, 0, 0],
+            [-width - 1, -1, -width],
+            [-width + 1, 1, -width],
+            [1, 0, 0],
+            [width, 0, 0],
+            [width + 1, 1, width],
+            [width - 1, -1, width],
+        ],
+        dtype=np.int64,
+    )
+    path = [end]
+    cell = end
+    while potential[cell] > 0:
+        best, before = -1, 0
+        for step, along_x, along_y in steps:
+            if along_x == 0:
+                entry = axis_of[costs[cell]]
+            elif costs[cell + along_x] == 0 or costs[cell + along_y] == 0:
+                entry = axis_of[0]  # blocked: a diagonal step may not cut a corner
+            else:
+                entry = diagonal_of[costs[cell]]
+            reached = potential[cell + step] + entry
+            if best < 0 or reached < best:
+                best, before = reached, cell + step
+        cell = before
+        path.append(cell)
+    return np.array(path[::-1], dtype=np.int64)
+
+
+@compiled("f8[:, ::1](b1[:, ::1], i8)")
+def distances_to_lethal(lethal: Any, reach: int) -> FloatArray:
+    """Each cell's distance in cells to the nearest lethal cell (R, C): the square root of the
+    least whole dx^2 + dy^2 over the lethal cells within `reach` rows above or below and
+    `reach` columns either side, inf where there is none (so more than `reach`, or inf,
+    beyond `reach`)."""
+    rows, columns = lethal.shape
+    squared = np.full((rows, columns), np.inf)  # dy^2 to the nearest lethal cell in the column
+    for column in range(columns):
+        above = -1
+        for row in range(rows):  # downward: the nearest above, then the nearest below
+            if lethal[row, column]:
+                above = row
+            if above >= 0 and row - above <= reach:
+                squared[row, column] = float((row - above) ** 2)
+        below = -1
+        for row in range(rows - 1, -1, -1):
+            if lethal[row, column]:
+                below = row
+            if below >= 0 and below - row <= reach:
+                squared[row, column] = min(squared[row, column], float((below - row) ** 2))
+    distance = np.empty((rows, columns))
+    for row in range(rows):
+        for column in range(columns):
+            best = squared[row, column]
+            for shift in range(1, reach + 1):
+                if column >= shift:
+                    best = min(best, squared[row, column - shift] + float(shift * shift))
+                if column + shift < columns:
+                    best = min(best, squared[row, column + shift] + float(shift * shift))
+            distance[row, column] = math.sqrt(best)
+    return distance
 
 
 @compiled()

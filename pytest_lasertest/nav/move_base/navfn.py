@@ -41,12 +41,11 @@ import numpy.typing as npt
 from pytest_lasertest.model.geometry import FloatArray, IntArray
 from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, UNKNOWN
 from pytest_lasertest.nav.move_base.costmap import Costmap
-from pytest_lasertest.nav.move_base.kernels import cheapest_costs
+from pytest_lasertest.nav.move_base.kernels import cheapest_costs, descend
 
 SCALE = 1000  # potential units per navfn cost unit and cell stepped
 UNREACHABLE = int(np.iinfo(np.intp).max)  # the potential of a cell no path reaches
 _Bytes = npt.NDArray[np.uint8]
-_Weights = dict[int, tuple[IntArray, IntArray]]  # flat step -> entry weights (forward, backward)
 _Cell = TypeVar("_Cell", bound=np.generic)
 
 
@@ -119,16 +118,6 @@ class _Layout:
             )
 
 
-def _shifted(mask: npt.NDArray[np.bool_], offset: int) -> npt.NDArray[np.bool_]:
-    """mask[i + offset] at each i, False beyond the ends."""
-    out = np.zeros_like(mask)
-    if offset >= 0:
-        out[: mask.size - offset] = mask[offset:]
-    else:
-        out[-offset:] = mask[:offset]
-    return out
-
-
 def _step_costs(layout: _Layout) -> tuple[IntArray, IntArray, int]:
     """The cost (256,) of entering a cell of each navfn cost along an axis and diagonally, and
     the blocked cost: it exceeds every real path's, so any sum holding it marks no path."""
@@ -142,37 +131,16 @@ def _step_costs(layout: _Layout) -> tuple[IntArray, IntArray, int]:
     return axis_of, diagonal_of, blocked
 
 
-def _entry_weights(
-    layout: _Layout, steps: tuple[IntArray, IntArray, int], out: IntArray
-) -> _Weights:
-    """The cost of entering each flat cell along each step, both ways, written to `out` (5, B),
-    from the step costs `_step_costs` gives."""
-    costs, width = layout.costs, layout.width
-    enterable = costs > 0
-    axis_of, diagonal_of, blocked = steps
-    axis = np.take(axis_of, costs, out=out[0])
-    weights: _Weights = {1: (axis, axis), width: (axis, axis)}
-    for turn, forward, backward in ((1, out[1], out[2]), (-1, out[3], out[4])):
-        # From f -/+ (width + turn) into f, the step passes f -/+ width and f -/+ turn.
-        for entry, sign in ((forward, -1), (backward, 1)):
-            np.take(diagonal_of, costs, out=entry)
-            corners = _shifted(enterable, sign * width) & _shifted(enterable, sign * turn)
-            entry[~corners] = blocked
-        weights[width + turn] = (forward, backward)
-    return weights
-
-
-def _flat_potential(layout: _Layout, start: int, goal: int = -1) -> tuple[IntArray, _Weights, int]:
-    """The potential (B,) from flat cell `start`, by the compiled Dijkstra, with the entry
-    weights the descent reads and the blocked cost: exact for every cell if `goal` is -1, else
-    for the cells no dearer than flat cell `goal` (the others no cheaper than it)."""
-    steps = axis_of, diagonal_of, blocked = _step_costs(layout)
-    weights = _entry_weights(layout, steps, np.empty((5, layout.costs.size), dtype=np.intp))
+def _flat_potential(layout: _Layout, start: int, goal: int = -1) -> tuple[IntArray, int]:
+    """The potential (B,) from flat cell `start`, by the compiled Dijkstra, and the blocked cost:
+    exact for every cell if `goal` is -1, else for the cells no dearer than flat cell `goal`
+    (the others no cheaper than it)."""
+    axis_of, diagonal_of, blocked = _step_costs(layout)
     potential = np.empty(layout.costs.size, dtype=np.intp)
     cheapest_costs(
         layout.costs, layout.width, axis_of, diagonal_of, blocked, start, goal, potential
     )
-    return potential, weights, blocked
+    return potential, blocked
 
 
 def potential(costs: npt.ArrayLike, start: tuple[int, int], settings: NavfnSettings) -> IntArray:
@@ -183,7 +151,7 @@ def potential(costs: npt.ArrayLike, start: tuple[int, int], settings: NavfnSetti
     """
     layout = _Layout.of(costs, settings)
     layout.check(start, "start")
-    flat, _, blocked = _flat_potential(layout, layout.index(start))
+    flat, blocked = _flat_potential(layout, layout.index(start))
     grid = layout.grid(flat)
     result: IntArray = np.where(grid < blocked, grid, UNREACHABLE)
     return result
@@ -206,22 +174,12 @@ def _nearest_reached(
     return x + x0, y + y0
 
 
-def _descend(layout: _Layout, potential: IntArray, weights: _Weights, end: int) -> IntArray:
-    """The cells (K, 2) [x, y] of a cheapest path from the potential's zero to flat cell `end`.
-
-    Each cell's predecessor is the neighbour its potential was reached from, the first of them in
-    a fixed order; the potential (B,) falls strictly along the way, so no cell repeats.
-    """
-    # Off the grid lie the frame's blocked cells (before the first cell, the frame's last cell
-    # by negative index): valid to read, and never the cheapest.
-    moves = [(-step, forward) for step, (forward, _) in weights.items()]
-    moves += [(step, backward) for step, (_, backward) in weights.items()]
-    path = [end]
-    while potential[path[-1]] > 0:
-        cell = path[-1]
-        offset, _ = min(moves, key=lambda move: int(potential[cell + move[0]] + move[1][cell]))
-        path.append(cell + offset)
-    flat = np.array(path[::-1], dtype=np.intp)
+def _descend(layout: _Layout, potential: IntArray, end: int) -> IntArray:
+    """The cells (K, 2) [x, y] of a cheapest path from the potential's zero to flat cell `end`
+    (compiled: kernels.descend). Off the grid lie the frame's blocked cells (before the first
+    cell, the frame's last cell by negative index): valid to read, and never the cheapest."""
+    axis_of, diagonal_of, _ = _step_costs(layout)
+    flat = descend(layout.costs, layout.width, axis_of, diagonal_of, potential, end)
     return np.column_stack((flat % layout.width, flat // layout.width - 1))
 
 
@@ -245,12 +203,12 @@ def plan_path(
         raise ValueError(f"the resolution must be positive, not {resolution} m per cell")
     # Where the goal is reached, the search stops there: it is the nearest reached cell, and
     # its descent reads only cells cheaper than it. Where not, the search covers every cell.
-    flat, weights, blocked = _flat_potential(layout, layout.index(start), layout.index(goal))
+    flat, blocked = _flat_potential(layout, layout.index(start), layout.index(goal))
     reach = math.floor(settings.default_tolerance / resolution + 1e-9)
     end = _nearest_reached(layout.grid(flat), blocked, goal, reach)
     if end is None:
         return None
-    return _descend(layout, flat, weights, layout.index(end))
+    return _descend(layout, flat, layout.index(end))
 
 
 def windowed_plan(
