@@ -124,10 +124,12 @@ def main() -> None:
     for drive in rounds["new"][0]:
         old, new = (statistics.median(r[drive][0] for r in rounds[name]) for name in checkouts)
         same = "same" if rounds["old"][0][drive][1] == rounds["new"][0][drive][1] else "differs"
+        if drive == "start-up":
+            print(f"{drive:40s} {old:7.2f} {new:7.2f} {old / new:5.2f}x")
+            continue
         print(f"{drive:40s} {old:7.2f} {new:7.2f} {old / new:5.2f}x  {same}")
-        if drive != "start-up":
-            totals["old"] += old
-            totals["new"] += new
+        totals["old"] += old
+        totals["new"] += new
     ratio = totals["old"] / totals["new"]
     print(f"{'all drives':40s} {totals['old']:7.2f} {totals['new']:7.2f} {ratio:5.2f}x")
 

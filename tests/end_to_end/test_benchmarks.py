@@ -185,6 +185,7 @@ VERSUS_LINE = re.compile(r"all drives +[\d.]+ +[\d.]+ +[\d.]+x")
 def test_the_side_by_side_benchmark_finds_a_checkout_drives_as_itself() -> None:
     lines = printed("benchmarks/versus.py", str(REPO), "--rounds", "1", "--seconds", "3")
     assert VERSUS_LINE.fullmatch(lines[-1])
+    assert lines[2].startswith("start-up ")
     drives = lines[3:-1]
     assert len(drives) == 9  # three stacks in three worlds
     assert all(line.endswith("x  same") for line in drives)
