@@ -1,11 +1,12 @@
-"""Compiled kernels of the collision monitor (collision_monitor.py): getCollisionTime's loop of
-projectState, transformPoints and isPointInside, one call a control cycle instead of a few
-hundred numpy calls.
+"""Compiled kernels of the Nav2 stack: the collision monitor's getCollisionTime loop of
+projectState, transformPoints and isPointInside (collision_monitor.py), and DWB's rollouts, its
+MapGrid critics' distance transform and its reading of the cells under every rollout pose (dwb.py,
+dwb_critics.py): one call where the numpy code made hundreds.
 
-Each operation is collision_monitor.py's, in its order, with no fused multiply-add (numba
-compiles without fastmath), and the cosines and sines are the C library's, as Python's math
-module takes them: the time found is the numpy code's to the bit, which
-tests/nav/nav2/test_kernels.py holds.
+Each operation is the numpy code's, in its order, with no fused multiply-add (numba compiles
+without fastmath), and the cosines and sines are the C library's, as numpy's and Python's math
+module's are: what each returns is the numpy code's to the bit (the distances are whole numbers,
+exact in any order), which tests/nav/nav2/test_kernels.py and the DWB tests hold.
 """
 
 from __future__ import annotations
