@@ -5,8 +5,8 @@ nav2_dwb_controller/: dwb_critics/src/rotate_to_goal.cpp, oscillation.cpp, base_
 map_grid.cpp, path_dist.cpp, goal_dist.cpp, path_align.cpp, goal_align.cpp, alignment_util.cpp;
 costmap_queue/src/costmap_queue.cpp and include/costmap_queue/map_based_queue.hpp (the
 propagation); nav_2d_utils/src/path_ops.cpp (adjustPlanResolution); and
-nav2_costmap_2d/src/costmap_2d.cpp (worldToMap). Our own numpy code, its distance transform
-compiled; `dwb.py` runs the critics.
+nav2_costmap_2d/src/costmap_2d.cpp (worldToMap). Our own numpy code, with its distance transform
+and its reading of the cells under every pose compiled (kernels.py); `dwb.py` runs the critics.
 
 Each critic gives, for K trajectories, a raw score and which are legal (DWB's
 IllegalTrajectoryException):
