@@ -131,16 +131,18 @@ def _step_costs(layout: _Layout) -> tuple[IntArray, IntArray, int]:
     return axis_of, diagonal_of, blocked
 
 
-def _flat_potential(layout: _Layout, start: int, goal: int = -1) -> tuple[IntArray, int]:
-    """The potential (B,) from flat cell `start`, by the compiled Dijkstra, and the blocked cost:
-    exact for every cell if `goal` is -1, else for the cells no dearer than flat cell `goal`
-    (the others no cheaper than it)."""
-    axis_of, diagonal_of, blocked = _step_costs(layout)
+def _flat_potential(
+    layout: _Layout, steps: tuple[IntArray, IntArray, int], start: int, goal: int = -1
+) -> IntArray:
+    """The potential (B,) from flat cell `start`, by the compiled Dijkstra over the step costs
+    `_step_costs` gives: exact for every cell if `goal` is -1, else for the cells no dearer
+    than flat cell `goal` (the others no cheaper than it)."""
+    axis_of, diagonal_of, blocked = steps
     potential = np.empty(layout.costs.size, dtype=np.intp)
     cheapest_costs(
         layout.costs, layout.width, axis_of, diagonal_of, blocked, start, goal, potential
     )
-    return potential, blocked
+    return potential
 
 
 def potential(costs: npt.ArrayLike, start: tuple[int, int], settings: NavfnSettings) -> IntArray:
@@ -151,7 +153,8 @@ def potential(costs: npt.ArrayLike, start: tuple[int, int], settings: NavfnSetti
     """
     layout = _Layout.of(costs, settings)
     layout.check(start, "start")
-    flat, blocked = _flat_potential(layout, layout.index(start))
+    steps = _step_costs(layout)
+    flat, blocked = _flat_potential(layout, steps, layout.index(start)), steps[2]
     grid = layout.grid(flat)
     result: IntArray = np.where(grid < blocked, grid, UNREACHABLE)
     return result
@@ -174,11 +177,13 @@ def _nearest_reached(
     return x + x0, y + y0
 
 
-def _descend(layout: _Layout, potential: IntArray, end: int) -> IntArray:
+def _descend(
+    layout: _Layout, steps: tuple[IntArray, IntArray, int], potential: IntArray, end: int
+) -> IntArray:
     """The cells (K, 2) [x, y] of a cheapest path from the potential's zero to flat cell `end`
     (compiled: kernels.descend). Off the grid lie the frame's blocked cells (before the first
     cell, the frame's last cell by negative index): valid to read, and never the cheapest."""
-    axis_of, diagonal_of, _ = _step_costs(layout)
+    axis_of, diagonal_of, _ = steps
     flat = descend(layout.costs, layout.width, axis_of, diagonal_of, potential, end)
     return np.column_stack((flat % layout.width, flat // layout.width - 1))
 
@@ -203,12 +208,14 @@ def plan_path(
         raise ValueError(f"the resolution must be positive, not {resolution} m per cell")
     # Where the goal is reached, the search stops there: it is the nearest reached cell, and
     # its descent reads only cells cheaper than it. Where not, the search covers every cell.
-    flat, blocked = _flat_potential(layout, layout.index(start), layout.index(goal))
+    steps = _step_costs(layout)
+    flat = _flat_potential(layout, steps, layout.index(start), layout.index(goal))
+    blocked = steps[2]
     reach = math.floor(settings.default_tolerance / resolution + 1e-9)
     end = _nearest_reached(layout.grid(flat), blocked, goal, reach)
     if end is None:
         return None
-    return _descend(layout, flat, layout.index(end))
+    return _descend(layout, steps, flat, layout.index(end))
 
 
 def windowed_plan(
