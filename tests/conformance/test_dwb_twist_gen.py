@@ -1,10 +1,10 @@
 """DWB's tests of the StandardTrajectoryGenerator (dwb_plugins/test/twist_gen.cpp): its twists
-(getTwists, XYThetaIterator) on our `dwb.sample_twists`, and its trajectories
-(generateTrajectory) on our `dwb.roll_out`, with `DwbSettings` read from a params file that sets
-what the upstream test node sets (`params.configure`, FollowPath as DWB), so that whatever the
-test leaves at its code default takes ours; those it reads agree (sim_time 1.7 s, vx_samples
-and vtheta_samples 20, angular_granularity 0.025 rad). The assertions of checkLimits, matchPose
-and matchTwist count once per call.
+(getTwists, XYThetaIterator) on our `dwb_trajectories.sample_twists`, and its trajectories
+(generateTrajectory) on our `dwb_trajectories.roll_out`, with `DwbSettings` read from a params file
+that sets what the upstream test node sets (`params.configure`, FollowPath as DWB), so that whatever
+the test leaves at its code default takes ours; those it reads agree (sim_time 1.7 s, vx_samples and
+vtheta_samples 20, angular_granularity 0.025 rad). The assertions of checkLimits, matchPose and
+matchTwist count once per call.
 
 The imitation is a differential drive: the upstream test node's y limits are left out (y is 0
 alone), so each twist set here is the upstream one's y = 0 part, and the limits on x and theta
@@ -27,8 +27,9 @@ import struct
 import numpy as np
 
 from pytest_lasertest.model.robot import ParameterValue
-from pytest_lasertest.nav.nav2.dwb import DwbSettings, roll_out, sample_twists
 from pytest_lasertest.nav.nav2.dwb_critics import F64
+from pytest_lasertest.nav.nav2.dwb_settings import DwbSettings
+from pytest_lasertest.nav.nav2.dwb_trajectories import roll_out, sample_twists
 from tests.helpers.dwb import dwb_settings
 from tests.helpers.upstream import NAVIGATION2_HUMBLE, NotPorted, Source
 

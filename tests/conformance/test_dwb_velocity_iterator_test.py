@@ -1,16 +1,17 @@
-"""DWB's tests of OneDVelocityIterator (dwb_plugins/test/velocity_iterator_test.cpp), rebuilt
-on our `dwb.velocity_samples`, which returns the iterator's whole run as a list: the upstream
+"""DWB's tests of OneDVelocityIterator (dwb_plugins/test/velocity_iterator_test.cpp), rebuilt on our
+`dwb_trajectories.velocity_samples`, which returns the iterator's whole run as a list: the upstream
 constructor's arguments (current, min, max, acceleration, deceleration, time, samples) are its
-arguments in that order, getVelocity after k increments is the list's item k, and isFinished
-after k increments is the list having k items; where upstream stops before the end, only
-the values it reads are compared. Its reset, which XYThetaIterator uses to run the
-theta samples again for each x, is seen in `dwb.sample_twists`."""
+arguments in that order, getVelocity after k increments is the list's item k, and isFinished after k
+increments is the list having k items; where upstream stops before the end, only the values it reads
+are compared. Its reset, which XYThetaIterator uses to run the theta samples again for each x, is
+seen in `dwb_trajectories.sample_twists`."""
 
 from __future__ import annotations
 
 import pytest
 
-from pytest_lasertest.nav.nav2.dwb import DwbSettings, sample_twists, velocity_samples
+from pytest_lasertest.nav.nav2.dwb_settings import DwbSettings
+from pytest_lasertest.nav.nav2.dwb_trajectories import sample_twists, velocity_samples
 from tests.helpers.upstream import NAVIGATION2_HUMBLE, Source
 
 ITERATOR = Source(

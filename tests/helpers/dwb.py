@@ -8,7 +8,7 @@ from collections.abc import Mapping
 
 from pytest_lasertest.model.robot import ParameterValue
 from pytest_lasertest.nav.nav2.controller_params import DWB
-from pytest_lasertest.nav.nav2.dwb import CRITICS, DwbSettings
+from pytest_lasertest.nav.nav2.dwb_settings import CRITICS, DwbSettings
 from tests.helpers.nav2_params import nav2_settings
 
 

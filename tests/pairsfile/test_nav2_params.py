@@ -765,7 +765,7 @@ def test_a_misspelt_node_or_parameter_is_listed_unread_with_the_name_meant(
 
 
 def test_dwb_rolling_out_more_poses_than_any_cycle_scores_is_an_error_at_vx_samples() -> None:
-    from pytest_lasertest.nav.nav2.dwb import CRITICS
+    from pytest_lasertest.nav.nav2.dwb_settings import CRITICS
     from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
     from tests.helpers.nav2_params import nav2_settings
 

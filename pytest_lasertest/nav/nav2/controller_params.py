@@ -7,8 +7,9 @@ from __future__ import annotations
 import dataclasses
 
 from pytest_lasertest.nav.move_base.settings import MAX_ROLLOUT_POSES
-from pytest_lasertest.nav.nav2.dwb import CODE_DEFAULTS, DwbSettings, rollout_poses
-from pytest_lasertest.nav.nav2.dwb import CRITICS as DWB_CRITICS
+from pytest_lasertest.nav.nav2.dwb_settings import CODE_DEFAULTS, DwbSettings
+from pytest_lasertest.nav.nav2.dwb_settings import CRITICS as DWB_CRITICS
+from pytest_lasertest.nav.nav2.dwb_trajectories import rollout_poses
 from pytest_lasertest.nav.nav2.mppi import SAME_PERIOD
 from pytest_lasertest.nav.nav2.node_parameters import NodeParameters
 from pytest_lasertest.nav.nav2.settings import (
@@ -128,7 +129,7 @@ def _check_period(node: NodeParameters, frequency: float, model_dt: float) -> No
 def _dwb(node: NodeParameters, settings: Nav2Settings) -> Nav2Settings:
     """DWB as FollowPath: its own parameters, its critics and theirs (`Critic.scale`,
     `PathAlign.forward_point_distance`, `RotateToGoal.slowing_factor`, ...), over the code's
-    defaults (`dwb.CODE_DEFAULTS`)."""
+    defaults (`dwb_settings.CODE_DEFAULTS`)."""
     if "FollowPath.critics" not in node.values:
         # Declared without a default (dwb_local_planner.cpp:81-83, 204-206 at jazzy f4108e5b).
         raise node.problem(

@@ -1,7 +1,7 @@
 """Compiled kernels of the Nav2 stack: the collision monitor's getCollisionTime loop of
 projectState, transformPoints and isPointInside (collision_monitor.py), and DWB's rollouts, its
-MapGrid critics' distance transform and its reading of the cells under every rollout pose (dwb.py,
-dwb_critics.py): one call where the numpy code made hundreds.
+MapGrid critics' distance transform and its reading of the cells under every rollout pose
+(dwb_trajectories.py, dwb_critics.py): one call where the numpy code made hundreds.
 
 Each operation is the numpy code's, in its order, with no fused multiply-add (numba compiles
 without fastmath), and the cosines and sines are the C library's, as numpy's and Python's math
@@ -84,8 +84,8 @@ def roll_out(
     """generateTrajectory for each of K commands (vx m/s, wz rad/s) from `pose` (m, m, rad) at
     `speed` (m/s, rad/s), in `steps` (K,) steps each: x, y and yaw (K, N) m, m, rad, a shorter
     trajectory's last pose repeated. `limits` holds sim_time (s), acc_lim_x, decel_lim_x
-    (m/s^2), acc_lim_theta and decel_lim_theta (rad/s^2). dwb.roll_out_in_numpy's operations,
-    in its order."""
+    (m/s^2), acc_lim_theta and decel_lim_theta (rad/s^2).
+    dwb_trajectories.roll_out_in_numpy's operations, in its order."""
     sim_time, speed_x, speed_theta = limits[0], speed[0], speed[1]
     most = int(max(steps.max(), 1.0)) if len(steps) else 1
     poses = most + 2 if include_last_point else most + 1

@@ -29,7 +29,7 @@ from pytest_lasertest.nav.nav2.critics import (
     PathFollowCritic,
     PreferForwardCritic,
 )
-from pytest_lasertest.nav.nav2.dwb import DwbSettings
+from pytest_lasertest.nav.nav2.dwb_settings import DwbSettings
 from pytest_lasertest.nav.nav2.mppi import MppiSettings
 from pytest_lasertest.nav.nav2.obstacle_layer import Marking, ObservationSource
 from pytest_lasertest.nav.nav2.velocity_smoother import SmootherSettings

@@ -10,14 +10,10 @@ from collections.abc import Callable
 import numpy as np
 
 from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
-from pytest_lasertest.nav.nav2.dwb import (
-    DwbController,
-    DwbSettings,
-    local_plan,
-    roll_out,
-    sample_twists,
-)
+from pytest_lasertest.nav.nav2.dwb import DwbController, local_plan
 from pytest_lasertest.nav.nav2.dwb_critics import manhattan_distances
+from pytest_lasertest.nav.nav2.dwb_settings import DwbSettings
+from pytest_lasertest.nav.nav2.dwb_trajectories import roll_out, sample_twists
 from pytest_lasertest.nav.nav2.mppi import CostGrid
 
 SETTINGS = DwbSettings()

@@ -13,7 +13,8 @@ from pytest_lasertest.nav.nav2.collision_monitor import (
     inside,
     transform_points,
 )
-from pytest_lasertest.nav.nav2.dwb import DwbSettings, roll_out, roll_out_in_numpy, sample_twists
+from pytest_lasertest.nav.nav2.dwb_settings import DwbSettings
+from pytest_lasertest.nav.nav2.dwb_trajectories import roll_out, roll_out_in_numpy, sample_twists
 from pytest_lasertest.nav.nav2.kernels import NO_COLLISION, collision_time, count_inside
 
 # A Husky-sized box and a concave outline with edges level with each other, where ray
