@@ -116,7 +116,7 @@ class PairFile(pytest.File):
         """A collection error where Nav2's rolling global costmap cannot hold the next
         waypoint from where the robot sets off for it: NavFn would plan no path, and every
         drive would fail alike."""
-        from pytest_lasertest.nav.nav2.nav2 import global_window, out_of_reach
+        from pytest_lasertest.nav.nav2.global_costmap import global_window, out_of_reach
 
         world = spec.world
         start = (world.start.x, world.start.y)

@@ -49,6 +49,7 @@ from pytest_lasertest.nav.nav2.collision_monitor import approach, scan_points
 from pytest_lasertest.nav.nav2.costmap import Nav2Costmap
 from pytest_lasertest.nav.nav2.critics import ConstraintCritic
 from pytest_lasertest.nav.nav2.dwb import DwbController
+from pytest_lasertest.nav.nav2.global_costmap import make_global_costmap
 from pytest_lasertest.nav.nav2.mppi import F32, SAME_PERIOD, Critic, Optimizer
 from pytest_lasertest.nav.nav2.params import configured
 from pytest_lasertest.nav.nav2.path_handler import max_costmap_dist, transform_path
@@ -57,7 +58,6 @@ from pytest_lasertest.nav.nav2.velocity_smoother import VelocitySmoother
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 
 Pose = tuple[float, float, float]  # m, m, rad
-Route = tuple[Point2D, ...]  # m, the waypoints in order
 # The default tree's RoundRobin of recoveries (navigate_to_pose_w_replanning_and_recovery.xml).
 RECOVERIES = ("ClearingActions", "Spin", "Wait", "BackUp")
 
@@ -164,7 +164,9 @@ class Nav2:
         pose = (odometry.x, odometry.y, odometry.yaw)
         s = self.settings
         if self._global is None:
-            self._global = self._global_costmap(pose)
+            self._global = make_global_costmap(
+                s, self._global_footprint, (pose[0], pose[1]), self.route, self._map
+            )
         # A costmap takes a scan once, where the robot was when it was taken (tf at its
         # stamp); between scans only the controller's clocks run.
         fresh, self._stamp = scan.stamp != self._stamp, scan.stamp
@@ -289,24 +291,6 @@ class Nav2:
             raise RuntimeError("Nav2 has no global costmap before its first scan")
         return self._global
 
-    def _global_costmap(self, pose: Pose) -> Nav2Costmap:
-        """A window wide enough for every cell a run along the route can mark, clear or plan
-        through, centred where the robot starts (it rolls with the robot)."""
-        s = self.settings
-        config = s.global_
-        size = global_window(config, (pose[0], pose[1]), self.route)
-        settings = dataclasses.replace(config.costmap, size=size)
-        static = config.static_layer if self._map is not None else None
-        if static is not None:
-            # The map's own unknown cells, and the window beyond the map, are unknown until
-            # scanned if the costmap tracks unknown space: its master, obstacle and static
-            # layers all read the costmap's track_unknown_space.
-            settings = dataclasses.replace(settings, track_unknown_space=static.track_unknown_space)
-        costmap = Nav2Costmap(settings, self._global_footprint, config.source, s.marking)
-        if static is not None and self._map is not None:
-            costmap.receive_map(self._map, static)
-        return costmap
-
     def _due(self, clock: str, time: float, period: float) -> bool:
         if time < self._next[clock]:
             return False
@@ -393,30 +377,6 @@ class Nav2:
         along = np.concatenate([[0.0], np.cumsum(steps)])
         kept: F32 = path[along <= self.settings.prune_distance].astype(np.float32)
         return kept
-
-
-def global_window(config: CostmapConfig, start: tuple[float, float], route: Route) -> float:
-    """How wide the global costmap's window is (m): the configured width, or less where a run
-    from `start` along `route` can mark, clear and plan through no more."""
-    points = np.array([start, *((point.x, point.y) for point in route)])
-    span = float(np.hypot(*(points[:, np.newaxis] - points[np.newaxis]).T).max())  # m
-    reach = config.source.raytrace_max_range + config.costmap.inflation_radius + 1.0  # m
-    return min(config.costmap.size, 2.0 * (span + reach))
-
-
-def out_of_reach(settings: Nav2Settings, start: tuple[float, float], route: Route) -> int | None:
-    """The index of the first waypoint the planner cannot reach from where the robot sets off
-    for it: outside the rolling global costmap round that point (NavFn plans only within the
-    costmap, and a goal off it fails as GoalOutsideMapBounds), by at least the goal tolerance
-    and a cell; None if every one lies within."""
-    half = global_window(settings.global_, start, route) / 2.0
-    margin = settings.xy_goal_tolerance + settings.global_.costmap.resolution
-    previous = start
-    for index, point in enumerate(route):
-        if max(abs(point.x - previous[0]), abs(point.y - previous[1])) >= half - margin:
-            return index
-        previous = (point.x, point.y)
-    return None
 
 
 def _follow_path(s: Nav2Settings, seed: int) -> Optimizer | DwbController:

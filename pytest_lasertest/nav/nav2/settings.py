@@ -216,7 +216,7 @@ def code_defaults(release: str) -> Nav2Settings:
         critics=(),  # critic_manager.cpp:39: no critic unless `critics` lists it
         local=dataclasses.replace(_code_default_costmap(5.0), static_layer=None),
         # Not rolling by default (costmap_2d_ros.cpp:129): the global costmap spans the map,
-        # here the window over the route (see `Nav2._global_costmap`).
+        # here the window over the route (see `global_costmap.make_global_costmap`).
         global_=_code_default_costmap(_global().costmap.size),
         prune_distance=1.5,  # MPPI's, path_handler.cpp:38
         collision_monitor=CollisionMonitorSettings(time_before_collision=2.0, min_points=4),
