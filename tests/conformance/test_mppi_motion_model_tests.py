@@ -1,5 +1,5 @@
 """nav2_mppi_controller's motion model tests (motion_model_tests.cpp), DiffDriveTest rebuilt on
-our differential drive's predict (mppi.py `_predict`): the speeds of each step are the controls
+our differential drive's predict (`motion_model.predict`): the speeds of each step are the controls
 of the step before, bounded by the acceleration limits.
 
 Not applicable: DiffDriveTest's vy and isHolonomic checks (our model has no lateral axis at
@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from pytest_lasertest.nav.nav2.mppi import MppiSettings, _predict
+from pytest_lasertest.nav.nav2.motion_model import changes, predict
+from pytest_lasertest.nav.nav2.mppi import MppiSettings
 from tests.helpers.upstream import NAVIGATION2_JAZZY, NotPorted, Source
 
 MOTION_MODEL = Source(
@@ -38,6 +39,7 @@ def test_predict_makes_each_steps_speed_the_control_of_the_step_before() -> None
     steps, batch = 50, 1000
     controls_vx = np.full((steps, batch), 10.0, dtype=np.float32)  # (T, B), time first
     controls_wz = np.full((steps, batch), 1.0, dtype=np.float32)
-    vx, wz = _predict(controls_vx, controls_wz, (10.0, 1.0), settings)
+    change = changes(settings.model_dt, settings.ax_max, settings.ax_min, settings.az_max)
+    vx, wz = predict(controls_vx, controls_wz, (10.0, 1.0), change)
     assert np.array_equal(vx, controls_vx)
     assert np.array_equal(wz, controls_wz)

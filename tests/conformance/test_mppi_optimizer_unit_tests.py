@@ -1,7 +1,7 @@
 """nav2_mppi_controller's optimizer tests (optimizer_unit_tests.cpp), rebuilt on our `Optimizer`
 (mppi.py) made from the test's parameters as a params file sets them (params.py), and on its
-steps: `_reset`, `_shift`, `_constrain` (applyControlSequenceConstraints), `_predict`
-(updateStateVelocities) and `_integrate` (integrateStateVelocities).
+steps: `_reset`, `_shift`, `_constrain` (applyControlSequenceConstraints), `motion_model.predict`
+(updateStateVelocities) and `motion_model.integrate` (integrateStateVelocities).
 
 Not applicable: the Omni and Ackermann parts of every test (setMotionModel("Omni"/"Ackermann"),
 getOptimizedTrajectory of an omni robot, vy everywhere, Omni_openLoopMppiTest; neither model
@@ -17,7 +17,8 @@ import numpy as np
 import pytest
 
 from pytest_lasertest.model.robot import ParameterValue
-from pytest_lasertest.nav.nav2.mppi import F32, CriticData, Optimizer, _integrate, _predict
+from pytest_lasertest.nav.nav2.motion_model import changes, integrate, predict
+from pytest_lasertest.nav.nav2.mppi import F32, CriticData, Optimizer
 from pytest_lasertest.nav.nav2.node_parameters import ParameterProblem
 from tests.helpers.mppi import nav2_settings, optimizer, path_along_x
 from tests.helpers.upstream import NAVIGATION2_JAZZY, NotPorted, Source
@@ -330,7 +331,8 @@ class Predicted:
         shape = (s.time_steps, s.batch_size)  # time first
         cvx = np.full(shape, controls[0], dtype=np.float32)
         cwz = np.full(shape, controls[1], dtype=np.float32)
-        self.vx, self.wz = _predict(cvx, cwz, speed, s)
+        change = changes(s.model_dt, s.ax_max, s.ax_min, s.az_max)
+        self.vx, self.wz = predict(cvx, cwz, speed, change)
         # The largest changes a step, in float as the test works them out.
         step = np.float32(s.model_dt)
         self.vx_up, self.vx_down = np.float32(s.ax_max) * step, np.float32(s.ax_min) * step
@@ -340,7 +342,7 @@ class Predicted:
 @OPTIMIZER.test("OptimizerTests.updateStateVelocitiesTests", assertions=6)
 def test_each_samples_first_speeds_are_the_robots() -> None:
     # The test reads them after updateInitialStateVelocities and again after the propagation;
-    # ours does both in one step (_predict), so that each check here stands for both.
+    # ours does both in one step (motion_model.predict), so that each check here stands for both.
     forward = Predicted((5.0, 6.0), (0.75, 0.1))
     assert forward.vx[0, 0] == pytest.approx(5.0, abs=1e-6)
     assert forward.wz[0, 0] == pytest.approx(6.0, abs=1e-6)
@@ -395,7 +397,7 @@ def integrated(wz: float) -> tuple[F32, F32, F32]:
     vx = np.full((s.time_steps, s.batch_size), 0.1, dtype=np.float32)  # time first
     turns = np.full_like(vx, wz)
     vx[0] = turns[0] = 0.0
-    return _integrate(vx, turns, POSE, s.model_dt)
+    return integrate(vx, turns, POSE, s.model_dt)
 
 
 @OPTIMIZER.test("OptimizerTests.integrateStateVelocitiesTests", assertions=3)

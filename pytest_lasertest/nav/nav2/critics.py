@@ -1,6 +1,6 @@
 """MPPI's critics, each adding a cost per sampled trajectory (nav2_mppi_controller/src/critics
 at jazzy f4108e5b; weights, powers and thresholds from Jazzy's nav2_params.yaml, else the
-critic's own default): being built.
+critic's own default).
 
 Each is a frozen dataclass called with the cycle's `CriticData`; `power` raises the cost as
 Nav2's `cost_power` does.
@@ -16,7 +16,8 @@ import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import IntArray
 from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
-from pytest_lasertest.nav.nav2.mppi import F32, CriticData, MppiSettings
+from pytest_lasertest.nav.nav2 import kernels
+from pytest_lasertest.nav.nav2.mppi import F32, CostGrid, CriticData, MppiSettings
 
 
 def _powered(cost: F32, weight: float, power: int) -> F32:
@@ -127,14 +128,22 @@ class CostCritic:
             return
         step = self.trajectory_point_step
         points = data.x.shape[1] // step
-        costs = data.costmap.at(data.x[:, ::step][:, :points], data.y[:, ::step][:, :points])
-        collides = (costs == LETHAL) | (costs == INSCRIBED)
-        if not data.costmap.tracking_unknown:
-            collides |= costs == UNKNOWN
-        collided = collides.any(axis=1)
-        ordinary = 0.0 if data.within(self.near_goal_distance) else costs
-        per_point = np.where(costs >= self.near_collision_cost, self.critical_cost, ordinary)
-        repulsive = np.where(collided, self.collision_cost, per_point.sum(axis=1))
+        grid, near_goal = data.costmap, data.within(self.near_goal_distance)
+        sums, collided = kernels.cost_critic_sums(
+            data.x,
+            data.y,
+            step,
+            points,
+            np.ascontiguousarray(grid.costs),
+            np.float32(grid.origin[0]),
+            np.float32(grid.origin[1]),
+            np.float32(grid.resolution),
+            grid.tracking_unknown,
+            np.float32(self.near_collision_cost),
+            self.critical_cost,
+            near_goal,
+        )
+        repulsive = np.where(collided, self.collision_cost, sums)
         scale = self.weight / 254.0 / points
         data.costs += _powered(repulsive.astype(np.float32), scale, self.power)
         data.fail = bool(collided.all())
@@ -206,15 +215,10 @@ class PathAlignCritic:
         valid = data.path_points_valid()[:count]
         if self._blocked(valid):
             return
-        path = data.path[:count]
+        path = np.ascontiguousarray(data.path[:count])
         along = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(path, axis=0).T))])
-        x, y = data.x[:, :: self.trajectory_point_step], data.y[:, :: self.trajectory_point_step]
-        travelled = np.cumsum(np.hypot(np.diff(x, axis=1), np.diff(y, axis=1)), axis=1)
-        nearest = np.maximum.accumulate(_closest_along(along, travelled), axis=1)
-        counted = valid[nearest]
-        gaps = np.hypot(path[nearest, 0] - x[:, 1:], path[nearest, 1] - y[:, 1:])
-        samples = counted.sum(axis=1)
-        summed = np.where(counted, gaps, 0.0).sum(axis=1)
+        step = self.trajectory_point_step
+        summed, samples = kernels.path_align_gaps(data.x, data.y, step, along, path, valid)
         cost = np.where(samples > 0, summed / np.maximum(samples, 1), 0.0).astype(np.float32)
         data.costs += _powered(cost, self.weight, self.power)
 
@@ -236,3 +240,39 @@ def _closest_along(along: npt.NDArray[np.float64], travelled: npt.NDArray[np.flo
     nearer_before = (after <= last) & (travelled - along[before] < along[capped] - travelled)
     closest: IntArray = np.where(after > last, last, np.where(nearer_before, before, capped))
     return closest
+
+
+def path_align_gaps_in_numpy(
+    data: CriticData,
+    step: int,
+    along: npt.NDArray[np.float64],
+    path: F32,
+    valid: npt.NDArray[np.bool_],
+) -> tuple[F32, IntArray]:
+    """`kernels.path_align_gaps` in numpy, the reference it is tested against: the summed
+    distances (B,) m from every step-th point but the first to the path point as far along,
+    where that point is valid, and how many were counted (B,)."""
+    x, y = data.x[:, ::step], data.y[:, ::step]
+    travelled = np.cumsum(np.hypot(np.diff(x, axis=1), np.diff(y, axis=1)), axis=1)
+    nearest = np.maximum.accumulate(_closest_along(along, travelled), axis=1)
+    counted = valid[nearest]
+    gaps = np.hypot(path[nearest, 0] - x[:, 1:], path[nearest, 1] - y[:, 1:])
+    summed: F32 = np.where(counted, gaps, 0.0).sum(axis=1)
+    samples: IntArray = counted.sum(axis=1)
+    return summed, samples
+
+
+def cost_critic_sums_in_numpy(
+    critic: CostCritic, data: CriticData, grid: CostGrid
+) -> tuple[F32, npt.NDArray[np.bool_]]:
+    """`kernels.cost_critic_sums` in numpy, the reference it is tested against."""
+    step = critic.trajectory_point_step
+    points = data.x.shape[1] // step
+    costs = grid.at(data.x[:, ::step][:, :points], data.y[:, ::step][:, :points])
+    collides = (costs == LETHAL) | (costs == INSCRIBED)
+    if not grid.tracking_unknown:
+        collides |= costs == UNKNOWN
+    ordinary = 0.0 if data.within(critic.near_goal_distance) else costs
+    per_point = np.where(costs >= critic.near_collision_cost, critic.critical_cost, ordinary)
+    sums: F32 = per_point.sum(axis=1)
+    return sums, collides.any(axis=1)

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
 from pytest_lasertest.nav.move_base.kernels import CELLS, compiled
 
 NO_COLLISION = -1.0  # s: what collision_time returns when no step's footprint holds min_points
@@ -175,3 +176,179 @@ def read_every_pose(flat: Any, values: FloatArray, failing: FloatArray) -> tuple
                 break
         last[k] = values[max(flat[k, flat.shape[1] - 1], 0)]
     return last, legal
+
+
+# MPPI's samples, time-major (T, B) float32, as mppi.py keeps them; numba keeps float32
+# arithmetic in float32, as numpy does for float32 arrays and float32 scalars.
+SAMPLES = "f4[:, ::1]"
+
+
+@compiled()
+def _clip(value: Any, low: Any, high: Any) -> Any:
+    """numpy's clip of one value: its _NPY_MIN(_NPY_MAX(value, low), high), which keeps the
+    value against an equal bound (a signed zero included)."""
+    value = value if value > low else low
+    return value if value < high else high
+
+
+@compiled(f"UniTuple({SAMPLES}, 2)({SAMPLES}, {SAMPLES}, f4, f4, f4, f4, f4)")
+def predict(
+    noised_vx: Any, noised_wz: Any, vx0: Any, wz0: Any, up: Any, down: Any, turn: Any
+) -> tuple[Any, Any]:
+    """DiffDrive's predict over noised controls (T, B) m/s and rad/s, bounded in place: the
+    speeds (T, B), from (vx0, wz0) at step 0; each later step's the noised control of the step
+    before, clipped to at most `up` faster and `down` (negative) slower than the speed before
+    it (mirrored when not moving forward) and `turn` either way. motion_model.predict_in_numpy's
+    operations, its clip as numpy's (a value kept unless beyond a bound, in that order)."""
+    steps, batch = noised_vx.shape
+    vx, wz = np.empty_like(noised_vx), np.empty_like(noised_wz)
+    vx[0, :], wz[0, :] = vx0, wz0
+    for step in range(1, steps):
+        for b in range(batch):
+            last_vx, last_wz = vx[step - 1, b], wz[step - 1, b]
+            if last_vx > 0:
+                low, high = last_vx + down, last_vx + up
+            else:
+                low, high = last_vx - up, last_vx - down
+            vx[step, b] = _clip(noised_vx[step - 1, b], low, high)
+            wz[step, b] = _clip(noised_wz[step - 1, b], last_wz - turn, last_wz + turn)
+            noised_vx[step - 1, b], noised_wz[step - 1, b] = vx[step, b], wz[step, b]
+    return vx, wz
+
+
+@compiled(f"{SAMPLES}({SAMPLES}, f4, f4)")
+def running_sum(rates: Any, dt: Any, start: Any) -> Any:
+    """`start` plus the running sum of rates x dt (T, B) along time, a row after another."""
+    total = np.empty_like(rates)
+    for b in range(rates.shape[1]):
+        total[0, b] = rates[0, b] * dt + start
+    for step in range(1, rates.shape[0]):
+        for b in range(rates.shape[1]):
+            total[step, b] = total[step - 1, b] + rates[step, b] * dt
+    return total
+
+
+@compiled(f"UniTuple({SAMPLES}, 2)({SAMPLES}, {SAMPLES}, {SAMPLES}, f4, f4, f4)")
+def advance(vx: Any, cos: Any, sin: Any, dt: Any, x0: Any, y0: Any) -> tuple[Any, Any]:
+    """x and y (T, B) m from (x0, y0): each step moves vx dt (T, B) along the heading whose
+    cosine and sine (T, B) are given, a running sum along time."""
+    x, y = np.empty_like(vx), np.empty_like(vx)
+    for step in range(vx.shape[0]):
+        for b in range(vx.shape[1]):
+            moved = vx[step, b] * dt
+            x[step, b] = moved * cos[step, b] + (x0 if step == 0 else x[step - 1, b])
+            y[step, b] = moved * sin[step, b] + (y0 if step == 0 else y[step - 1, b])
+    return x, y
+
+
+@compiled("f4(f4[::1], i8, i8)")
+def _pairwise_sum(values: Any, start: int, count: int) -> Any:
+    """numpy's pairwise summation of values[start:start + count] (float32): a plain sum under
+    8 values, eight running sums joined pairwise up to 128, halves of a multiple of 8 above."""
+    if count < 8:
+        total = np.float32(-0.0)
+        for index in range(start, start + count):
+            total += values[index]
+        return total
+    if count > 128:
+        half = count // 2
+        half -= half % 8
+        return _pairwise_sum(values, start, half) + _pairwise_sum(
+            values, start + half, count - half
+        )
+    sums = values[start : start + 8].copy()
+    index = start + 8
+    while index < start + count - count % 8:
+        for lane in range(8):
+            sums[lane] += values[index + lane]
+        index += 8
+    total = ((sums[0] + sums[1]) + (sums[2] + sums[3])) + (
+        (sums[4] + sums[5]) + (sums[6] + sums[7])
+    )
+    while index < start + count:
+        total += values[index]
+        index += 1
+    return total
+
+
+@compiled("Tuple((f4[::1], i8[::1]))(f4[:, :], f4[:, :], i8, f8[::1], f4[:, ::1], b1[::1])")
+def path_align_gaps(
+    x: Any, y: Any, step: int, along: FloatArray, path: Any, valid: Any
+) -> tuple[Any, Any]:
+    """PathAlignCritic's sums over every step-th point but the first of each trajectory
+    (B, T) m: the distances (float32 m) from each point to the path point (P, 2) m as far
+    along the path (`along` (P,) m, float64) as the trajectory has come, where that path point
+    is `valid` (P,), summed as numpy's pairwise sum adds a row; and how many were counted,
+    (B,) each. critics.path_align_gaps_in_numpy's operations, in its order."""
+    batch, points = x.shape[0], (x.shape[1] + step - 1) // step
+    summed, counted = np.empty(batch, np.float32), np.zeros(batch, np.int64)
+    gaps = np.empty(max(points - 1, 0), np.float32)
+    last = along.shape[0] - 1
+    for b in range(batch):
+        travelled, after, nearest = np.float32(0.0), 0, 0
+        for j in range(1, points):
+            qx, qy = x[b, j * step], y[b, j * step]
+            moved = math.hypot(qx - x[b, (j - 1) * step], qy - y[b, (j - 1) * step])
+            travelled += np.float32(moved)
+            while after <= last and along[after] <= travelled:  # searchsorted, side right
+                after += 1
+            before, capped = max(after - 1, 0), min(after, last)
+            if after > last:
+                closest = last
+            elif travelled - along[before] < along[capped] - travelled:
+                closest = before
+            else:
+                closest = capped
+            nearest = max(nearest, closest)
+            gaps[j - 1] = np.float32(0.0)
+            if valid[nearest]:
+                counted[b] += 1
+                gaps[j - 1] = np.float32(math.hypot(path[nearest, 0] - qx, path[nearest, 1] - qy))
+        summed[b] = np.float32(0.0) + _pairwise_sum(gaps, 0, len(gaps))
+    return summed, counted
+
+
+# CostCritic's grid and its reading: costs (H, W), origin x and y (m) and resolution (m).
+GRID = "u1[:, ::1], f4, f4, f4"
+
+
+@compiled(f"Tuple((f4[::1], b1[::1]))(f4[:, :], f4[:, :], i8, i8, {GRID}, b1, f4, f8, b1)")
+def cost_critic_sums(
+    x: Any,
+    y: Any,
+    step: int,
+    points: int,
+    costs: Any,
+    origin_x: Any,
+    origin_y: Any,
+    resolution: Any,
+    tracking_unknown: bool,
+    near_collision_cost: Any,
+    critical_cost: float,
+    near_goal: bool,
+) -> tuple[Any, Any]:
+    """CostCritic over the first `points` step-th points of each trajectory (B, T) m: the sum
+    of their costs (B,), critical_cost from near_collision_cost up and nothing else near the
+    goal, and whether any point meets a lethal, inscribed or (untracked) unknown cell, or lies
+    off the grid (B,). The cells as worldToMapFloat finds them, in float32; the sum a point
+    after another, as numpy adds the columns of critics.cost_critic_sums_in_numpy, in float32,
+    or near the goal in float64 (numpy's type for a choice between two Python floats)."""
+    height, width = costs.shape
+    sums, collided = np.zeros(x.shape[0], np.float32), np.zeros(x.shape[0], np.bool_)
+    critical = np.float32(critical_cost)
+    for b in range(x.shape[0]):
+        near = 0.0  # float64, near the goal
+        for j in range(points):
+            px, py = x[b, j * step], y[b, j * step]
+            column, row = (px - origin_x) / resolution, (py - origin_y) / resolution
+            on = px >= origin_x and py >= origin_y and column < width and row < height
+            cost = np.float32(costs[int(row), int(column)] if on else UNKNOWN)
+            if cost in (LETHAL, INSCRIBED) or (cost == UNKNOWN and not tracking_unknown):
+                collided[b] = True
+            if near_goal:
+                near += critical_cost if cost >= near_collision_cost else 0.0
+            else:
+                sums[b] += critical if cost >= near_collision_cost else cost
+        if near_goal:
+            sums[b] = np.float32(near)
+    return sums, collided

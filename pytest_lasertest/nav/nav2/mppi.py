@@ -1,4 +1,4 @@
-"""Nav2's MPPI controller (nav2_mppi_controller), every sample at once: being built.
+"""Nav2's MPPI controller (nav2_mppi_controller), every sample at once.
 
 Read in ros-navigation/navigation2 at jazzy f4108e5b: src/optimizer.cpp (evalControl,
 optimize, generateNoisedTrajectories, integrateStateVelocities, updateControlSequence,
@@ -27,9 +27,10 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.nav2.motion_model import F32 as F32  # re-exported
+from pytest_lasertest.nav.nav2.motion_model import changes, integrate, limit, predict
 from pytest_lasertest.nav.nav2.noise import NoiseDrawer
 
-F32 = npt.NDArray[np.float32]
 # Savitzky-Golay, quadratic, 9 points (utils.hpp savitskyGolayFilter).
 SAVITZKY_GOLAY = np.array([-21, 14, 39, 54, 59, 54, 39, 14, -21], dtype=np.float32) / 231.0
 
@@ -205,6 +206,8 @@ class Optimizer:
         self.wz = np.zeros(settings.time_steps, dtype=np.float32)
         self.history = np.zeros((4, 2), dtype=np.float32)  # the last four commands [vx, wz]
         self._noise = NoiseDrawer(rng, (2, settings.time_steps, settings.batch_size))
+        s = settings
+        self._changes = changes(s.model_dt, s.ax_max, s.ax_min, s.az_max)
 
     def command(
         self,
@@ -255,8 +258,8 @@ class Optimizer:
         noised_vx += self.vx[:, np.newaxis]
         noised_wz *= np.float32(s.wz_std)
         noised_wz += self.wz[:, np.newaxis]
-        vx, wz = _predict(noised_vx, noised_wz, cycle.speed, s)
-        x, y, yaw = _integrate(vx, wz, cycle.pose, s.model_dt)
+        vx, wz = predict(noised_vx, noised_wz, cycle.speed, self._changes)
+        x, y, yaw = integrate(vx, wz, cycle.pose, s.model_dt)
         costs = np.zeros(s.batch_size, dtype=np.float32)
         return CriticData(
             cycle.pose,
@@ -291,9 +294,10 @@ class Optimizer:
         s = self.settings
         np.clip(self.vx, s.vx_min, s.vx_max, out=self.vx)
         np.clip(self.wz, -s.wz_max, s.wz_max, out=self.wz)
-        changes = _changes(s)
         for step in range(1, s.time_steps):
-            low_vx, high_vx, low_wz, high_wz = _limit(self.vx[step - 1], self.wz[step - 1], changes)
+            low_vx, high_vx, low_wz, high_wz = limit(
+                self.vx[step - 1], self.wz[step - 1], self._changes
+            )
             self.vx[step] = min(max(self.vx[step], low_vx), high_vx)
             self.wz[step] = min(max(self.wz[step], low_wz), high_wz)
 
@@ -313,83 +317,3 @@ class Optimizer:
         """shiftControlSequence: one step on, the last step repeated."""
         for sequence in (self.vx, self.wz):
             sequence[:-1] = sequence[1:].copy()
-
-
-Changes = tuple[np.float32, np.float32, np.float32]  # m/s, m/s, rad/s a step
-
-
-def _changes(s: MppiSettings) -> Changes:
-    """The most a step may change the speed up and down and the turn rate either way, in
-    float32 as Nav2 keeps them."""
-    step = s.model_dt
-    return np.float32(step * s.ax_max), np.float32(step * s.ax_min), np.float32(step * s.az_max)
-
-
-def _limits(last_vx: F32, last_wz: F32, changes: Changes) -> tuple[F32, F32, F32, F32]:
-    """The bounds [low_vx, high_vx, low_wz, high_wz] on the speeds of the step after speeds
-    `last_vx`, `last_wz` (B,): ax_min brakes a robot moving forward, and mirrored one that is
-    not (DiffDrive's predict and applyControlSequenceConstraints alike)."""
-    up, down, turn = changes
-    if down == -up:  # symmetric limits, as Nav2's: the same bounds either way
-        low_vx, high_vx = last_vx - up, last_vx + up
-    else:
-        forward = last_vx > 0
-        low_vx = last_vx + np.where(forward, down, -up)
-        high_vx = last_vx + np.where(forward, up, -down)
-    return low_vx, high_vx, last_wz - turn, last_wz + turn
-
-
-def _limit(last_vx: np.float32, last_wz: np.float32, changes: Changes) -> Bounds:
-    """`_limits` of one step's speeds, in float32 scalars."""
-    up, down, turn = changes
-    forward = last_vx > 0
-    low_vx = last_vx + (down if forward else -up)
-    high_vx = last_vx + (up if forward else -down)
-    return low_vx, high_vx, last_wz - turn, last_wz + turn
-
-
-Bounds = tuple[np.float32, np.float32, np.float32, np.float32]
-
-
-def _predict(
-    noised_vx: F32, noised_wz: F32, speed: tuple[float, float], s: MppiSettings
-) -> tuple[F32, F32]:
-    """DiffDrive's predict over time-major (T, B) controls: the speed at step 0 is the
-    robot's, and at each later step the noised control of the step before, bounded by the
-    acceleration limits (which bound the noised control itself too, as Nav2's does in place)."""
-    vx = np.empty_like(noised_vx)
-    wz = np.empty_like(noised_wz)
-    vx[0], wz[0] = speed
-    changes = _changes(s)
-    for step in range(1, len(noised_vx)):
-        low_vx, high_vx, low_wz, high_wz = _limits(vx[step - 1], wz[step - 1], changes)
-        np.clip(noised_vx[step - 1], low_vx, high_vx, out=noised_vx[step - 1])
-        np.clip(noised_wz[step - 1], low_wz, high_wz, out=noised_wz[step - 1])
-        vx[step], wz[step] = noised_vx[step - 1], noised_wz[step - 1]
-    return vx, wz
-
-
-def _integrate(
-    vx: F32, wz: F32, pose: tuple[float, float, float], dt: float
-) -> tuple[F32, F32, F32]:
-    """integrateStateVelocities over time-major (T, B) speeds: yaw the running sum of wz dt;
-    each step moves along the yaw of the step before (the start's for the first)."""
-    x0, y0, yaw0 = pose
-    step = np.float32(dt)
-    yaw = _running_sum(wz * step, np.float32(yaw0))
-    heading = np.empty_like(yaw)
-    heading[0], heading[1:] = np.float32(yaw0), yaw[:-1]
-    moved = vx * step
-    x = _running_sum(moved * np.cos(heading), np.float32(x0))
-    y = _running_sum(moved * np.sin(heading), np.float32(y0))
-    return x, y, yaw
-
-
-def _running_sum(steps: F32, start: np.float32) -> F32:
-    """`start` plus the running sum of time-major `steps` (T, B) along time: a step at a
-    time over whole rows, which numpy's cumsum along this axis is several times slower at."""
-    total = np.empty_like(steps)
-    np.add(steps[0], start, out=total[0])
-    for row in range(1, len(steps)):
-        np.add(total[row - 1], steps[row], out=total[row])
-    return total

@@ -1,6 +1,7 @@
 """The Nav2 stack's compiled loops give the numpy code's answers to the bit: the collision
 monitor's count of points inside a footprint at a pose and the time of the first step that
-holds min_points, and DWB's rollouts."""
+holds min_points, DWB's rollouts, and MPPI's motion model, integration, CostCritic's sums and
+PathAlignCritic's distances."""
 
 from __future__ import annotations
 
@@ -13,9 +14,29 @@ from pytest_lasertest.nav.nav2.collision_monitor import (
     inside,
     transform_points,
 )
+from pytest_lasertest.nav.nav2.critics import (
+    CostCritic,
+    cost_critic_sums_in_numpy,
+    path_align_gaps_in_numpy,
+)
 from pytest_lasertest.nav.nav2.dwb_settings import DwbSettings
 from pytest_lasertest.nav.nav2.dwb_trajectories import roll_out, roll_out_in_numpy, sample_twists
-from pytest_lasertest.nav.nav2.kernels import NO_COLLISION, collision_time, count_inside
+from pytest_lasertest.nav.nav2.kernels import (
+    NO_COLLISION,
+    collision_time,
+    cost_critic_sums,
+    count_inside,
+    path_align_gaps,
+)
+from pytest_lasertest.nav.nav2.motion_model import (
+    changes,
+    integrate,
+    integrate_in_numpy,
+    predict,
+    predict_in_numpy,
+)
+from pytest_lasertest.nav.nav2.mppi import CostGrid, Cycle
+from tests.helpers.mppi import optimizer
 
 # A Husky-sized box and a concave outline with edges level with each other, where ray
 # crossings could err.
@@ -79,3 +100,104 @@ def test_dwbs_compiled_rollouts_are_the_numpy_rollouts_to_the_bit(seed: int) -> 
         )
         for name in ("x", "y", "yaw"):
             assert np.array_equal(getattr(compiled, name), getattr(expected, name)), name
+
+
+def bits(array: np.ndarray) -> np.ndarray:
+    """float32 values as their bit patterns, so that 0.0 and -0.0 differ."""
+    return np.ascontiguousarray(array, dtype=np.float32).view(np.uint32)
+
+
+def noised_controls(rng: np.random.Generator, steps: int, batch: int) -> np.ndarray:
+    """Noised (vx, wz) controls (2, T, B) m/s, rad/s, a quarter of them 0.0 or -0.0, where a
+    clip that kept the other zero would show."""
+    controls = rng.normal(0.0, 0.4, (2, steps, batch)).astype(np.float32)
+    zeros = rng.random(controls.shape) < 0.25
+    controls[zeros] = np.where(rng.random(int(zeros.sum())) < 0.5, 0.0, -0.0)
+    return controls
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_mppis_compiled_motion_model_bounds_the_samples_as_numpy_does_to_the_bit(
+    seed: int,
+) -> None:
+    rng = np.random.default_rng(seed)
+    # Nav2's symmetric limits, then braking harder than speeding up (ax_min -3 against 0.5).
+    ax_min = -3.0 if seed % 2 else -0.5
+    change = changes(0.05, 0.5, ax_min, float(rng.uniform(1.0, 4.0)))
+    speed = (float(rng.choice([0.0, -0.0, rng.uniform(-0.3, 0.5)])), float(rng.normal(0, 0.5)))
+    controls = noised_controls(rng, 56, 300)
+    given, reference = controls.copy(), controls.copy()
+    compiled = predict(given[0], given[1], speed, change)
+    expected = predict_in_numpy(reference[0], reference[1], speed, change)
+    for ours, theirs in zip((*compiled, *given), (*expected, *reference), strict=True):
+        assert np.array_equal(bits(ours), bits(theirs))
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_mppis_compiled_integration_is_the_numpy_integration_to_the_bit(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    vx, wz = noised_controls(rng, 56, 300)
+    pose = (float(rng.uniform(-20, 20)), float(rng.uniform(-20, 20)), float(rng.uniform(-4, 4)))
+    compiled = integrate(vx, wz, pose, 0.05)
+    expected = integrate_in_numpy(vx, wz, pose, 0.05)
+    for ours, theirs in zip(compiled, expected, strict=True):
+        assert np.array_equal(bits(ours), bits(theirs))
+
+
+@pytest.mark.parametrize("step", [1, 2, 4, 5])
+@pytest.mark.parametrize("seed", range(3))
+def test_path_aligns_compiled_distances_are_the_numpy_distances_to_the_bit(
+    seed: int, step: int
+) -> None:
+    rng = np.random.default_rng(seed)
+    # A winding plan of 5 cm steps ahead of the robot, a tenth of its points blocked, and one
+    # cycle's samples as MPPI draws them (a thousand of 56 steps, read as (B, T) views).
+    turns = np.cumsum(rng.normal(0.0, 0.15, 60))
+    path = np.column_stack(
+        [np.cumsum(0.05 * np.cos(turns)), np.cumsum(0.05 * np.sin(turns))]
+    ).astype(np.float32)
+    valid = rng.random(len(path)) > 0.1
+    speed = (float(rng.uniform(0.0, 0.5)), float(rng.normal(0.0, 0.3)))
+    mppi = optimizer({"FollowPath.batch_size": 1000})
+    mppi.vx[:] = np.float32(rng.uniform(0.1, 0.5))
+    data = mppi._samples(Cycle((0.0, 0.0, 0.0), speed, path, (3.0, 0.0), None))
+    along = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(path, axis=0).T))])
+    compiled = path_align_gaps(data.x, data.y, step, along, path, valid)
+    expected = path_align_gaps_in_numpy(data, step, along, path, valid)
+    assert np.array_equal(compiled[1], expected[1])
+    assert np.array_equal(bits(compiled[0]), bits(expected[0]))
+
+
+@pytest.mark.parametrize("critical_cost", [300.0, 300.3])
+@pytest.mark.parametrize("seed", range(4))
+def test_cost_critics_compiled_sums_are_the_numpy_sums_to_the_bit(
+    seed: int, critical_cost: float
+) -> None:
+    rng = np.random.default_rng(seed)
+    # A 2 m costmap, smaller than the samples' reach, of every cost (near-lethal ones often);
+    # a critical cost that is not a whole number makes the order of the sum show.
+    costs = rng.choice([0, 17, 100, 252, 253, 254, 255], size=(40, 40)).astype(np.uint8)
+    grid = CostGrid(costs, (-0.7, -1.0), 0.05, tracking_unknown=bool(seed % 2))
+    critic = CostCritic(critical_cost=critical_cost, near_goal_distance=0.5 + seed % 3)
+    mppi = optimizer({"FollowPath.batch_size": 500})
+    mppi.vx[:] = np.float32(0.4)
+    path = np.array([[0.0, 0.0], [2.0, 0.0]], dtype=np.float32)
+    data = mppi._samples(Cycle((0.0, 0.0, 0.2), (0.3, 0.0), path, (1.2, 0.0), grid))
+    points = data.x.shape[1] // critic.trajectory_point_step
+    compiled = cost_critic_sums(
+        data.x,
+        data.y,
+        critic.trajectory_point_step,
+        points,
+        costs,
+        np.float32(-0.7),
+        np.float32(-1.0),
+        np.float32(0.05),
+        grid.tracking_unknown,
+        np.float32(critic.near_collision_cost),
+        critical_cost,
+        data.within(critic.near_goal_distance),
+    )
+    expected = cost_critic_sums_in_numpy(critic, data, grid)
+    assert np.array_equal(compiled[1], expected[1])
+    assert np.array_equal(bits(compiled[0]), bits(expected[0]))
