@@ -130,8 +130,7 @@ class CostCritic:
         points = data.x.shape[1] // step
         grid, near_goal = data.costmap, data.within(self.near_goal_distance)
         sums, collided = kernels.cost_critic_sums(
-            data.x,
-            data.y,
+            *data.time_major(),
             step,
             points,
             np.ascontiguousarray(grid.costs),
@@ -218,7 +217,7 @@ class PathAlignCritic:
         path = np.ascontiguousarray(data.path[:count])
         along = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(path, axis=0).T))])
         step = self.trajectory_point_step
-        summed, samples = kernels.path_align_gaps(data.x, data.y, step, along, path, valid)
+        summed, samples = kernels.path_align_gaps(*data.time_major(), step, along, path, valid)
         cost = np.where(samples > 0, summed / np.maximum(samples, 1), 0.0).astype(np.float32)
         data.costs += _powered(cost, self.weight, self.power)
 

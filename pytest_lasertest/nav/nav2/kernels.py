@@ -256,55 +256,69 @@ def _pairwise_sum(values: Any, start: int, count: int) -> Any:
         return _pairwise_sum(values, start, half) + _pairwise_sum(
             values, start + half, count - half
         )
-    sums = values[start : start + 8].copy()
+    s0, s1, s2, s3 = values[start], values[start + 1], values[start + 2], values[start + 3]
+    s4, s5, s6, s7 = values[start + 4], values[start + 5], values[start + 6], values[start + 7]
     index = start + 8
     while index < start + count - count % 8:
-        for lane in range(8):
-            sums[lane] += values[index + lane]
+        s0, s1, s2, s3 = (
+            s0 + values[index],
+            s1 + values[index + 1],
+            s2 + values[index + 2],
+            s3 + values[index + 3],
+        )
+        s4, s5, s6, s7 = (
+            s4 + values[index + 4],
+            s5 + values[index + 5],
+            s6 + values[index + 6],
+            s7 + values[index + 7],
+        )
         index += 8
-    total = ((sums[0] + sums[1]) + (sums[2] + sums[3])) + (
-        (sums[4] + sums[5]) + (sums[6] + sums[7])
-    )
+    total = ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7))
     while index < start + count:
         total += values[index]
         index += 1
     return total
 
 
-@compiled("Tuple((f4[::1], i8[::1]))(f4[:, :], f4[:, :], i8, f8[::1], f4[:, ::1], b1[::1])")
+@compiled(f"Tuple((f4[::1], i8[::1]))({SAMPLES}, {SAMPLES}, i8, f8[::1], f4[:, ::1], b1[::1])")
 def path_align_gaps(
     x: Any, y: Any, step: int, along: FloatArray, path: Any, valid: Any
 ) -> tuple[Any, Any]:
-    """PathAlignCritic's sums over every step-th point but the first of each trajectory
-    (B, T) m: the distances (float32 m) from each point to the path point (P, 2) m as far
-    along the path (`along` (P,) m, float64) as the trajectory has come, where that path point
-    is `valid` (P,), summed as numpy's pairwise sum adds a row; and how many were counted,
-    (B,) each. critics.path_align_gaps_in_numpy's operations, in its order."""
-    batch, points = x.shape[0], (x.shape[1] + step - 1) // step
-    summed, counted = np.empty(batch, np.float32), np.zeros(batch, np.int64)
-    gaps = np.empty(max(points - 1, 0), np.float32)
+    """PathAlignCritic's sums over every step-th point but the first of each trajectory, from
+    time-major positions (T, B) m: the distances (float32 m) from each point to the path point
+    (P, 2) m as far along the path (`along` (P,) m, float64) as the trajectory has come, where
+    that path point is `valid` (P,), summed as numpy's pairwise sum adds a row; and how many
+    were counted, (B,) each. critics.path_align_gaps_in_numpy's operations, in its order; a
+    step at a time over every trajectory, as the positions lie in memory."""
+    batch, points = x.shape[1], (x.shape[0] + step - 1) // step
+    gaps = np.zeros((batch, max(points - 1, 0)), np.float32)
+    counted = np.zeros(batch, np.int64)
+    travelled = np.zeros(batch, np.float32)
+    after, nearest = np.zeros(batch, np.int64), np.zeros(batch, np.int64)
     last = along.shape[0] - 1
-    for b in range(batch):
-        travelled, after, nearest = np.float32(0.0), 0, 0
-        for j in range(1, points):
-            qx, qy = x[b, j * step], y[b, j * step]
-            moved = math.hypot(qx - x[b, (j - 1) * step], qy - y[b, (j - 1) * step])
-            travelled += np.float32(moved)
-            while after <= last and along[after] <= travelled:  # searchsorted, side right
-                after += 1
-            before, capped = max(after - 1, 0), min(after, last)
-            if after > last:
+    for j in range(1, points):
+        now, before_now = j * step, (j - 1) * step
+        for b in range(batch):
+            qx, qy = x[now, b], y[now, b]
+            moved = math.hypot(qx - x[before_now, b], qy - y[before_now, b])
+            travelled[b] += np.float32(moved)
+            while after[b] <= last and along[after[b]] <= travelled[b]:  # searchsorted right
+                after[b] += 1
+            before, capped = max(after[b] - 1, 0), min(after[b], last)
+            if after[b] > last:
                 closest = last
-            elif travelled - along[before] < along[capped] - travelled:
+            elif travelled[b] - along[before] < along[capped] - travelled[b]:
                 closest = before
             else:
                 closest = capped
-            nearest = max(nearest, closest)
-            gaps[j - 1] = np.float32(0.0)
-            if valid[nearest]:
+            nearest[b] = max(nearest[b], closest)
+            if valid[nearest[b]]:
                 counted[b] += 1
-                gaps[j - 1] = np.float32(math.hypot(path[nearest, 0] - qx, path[nearest, 1] - qy))
-        summed[b] = np.float32(0.0) + _pairwise_sum(gaps, 0, len(gaps))
+                gap = math.hypot(path[nearest[b], 0] - qx, path[nearest[b], 1] - qy)
+                gaps[b, j - 1] = np.float32(gap)
+    summed = np.empty(batch, np.float32)
+    for b in range(batch):
+        summed[b] = np.float32(0.0) + _pairwise_sum(gaps[b], 0, gaps.shape[1])
     return summed, counted
 
 
@@ -312,7 +326,7 @@ def path_align_gaps(
 GRID = "u1[:, ::1], f4, f4, f4"
 
 
-@compiled(f"Tuple((f4[::1], b1[::1]))(f4[:, :], f4[:, :], i8, i8, {GRID}, b1, f4, f8, b1)")
+@compiled(f"Tuple((f4[::1], b1[::1]))({SAMPLES}, {SAMPLES}, i8, i8, {GRID}, b1, f4, f8, b1)")
 def cost_critic_sums(
     x: Any,
     y: Any,
@@ -327,28 +341,28 @@ def cost_critic_sums(
     critical_cost: float,
     near_goal: bool,
 ) -> tuple[Any, Any]:
-    """CostCritic over the first `points` step-th points of each trajectory (B, T) m: the sum
-    of their costs (B,), critical_cost from near_collision_cost up and nothing else near the
-    goal, and whether any point meets a lethal, inscribed or (untracked) unknown cell, or lies
-    off the grid (B,). The cells as worldToMapFloat finds them, in float32; the sum a point
-    after another, as numpy adds the columns of critics.cost_critic_sums_in_numpy, in float32,
-    or near the goal in float64 (numpy's type for a choice between two Python floats)."""
+    """CostCritic over the first `points` step-th points of each trajectory, from time-major
+    positions (T, B) m: the sum of their costs (B,), critical_cost from near_collision_cost up
+    and nothing else near the goal, and whether any point meets a lethal, inscribed or
+    (untracked) unknown cell, or lies off the grid (B,). The cells as worldToMapFloat finds
+    them, in float32; the sum a point after another, as numpy adds the columns of
+    critics.cost_critic_sums_in_numpy, in float32, or near the goal in float64 (numpy's type
+    for a choice between two Python floats)."""
     height, width = costs.shape
-    sums, collided = np.zeros(x.shape[0], np.float32), np.zeros(x.shape[0], np.bool_)
+    batch = x.shape[1]
+    sums, near = np.zeros(batch, np.float32), np.zeros(batch)  # near: the goal's, float64
+    collided = np.zeros(batch, np.bool_)
     critical = np.float32(critical_cost)
-    for b in range(x.shape[0]):
-        near = 0.0  # float64, near the goal
-        for j in range(points):
-            px, py = x[b, j * step], y[b, j * step]
+    for j in range(points):
+        for b in range(batch):
+            px, py = x[j * step, b], y[j * step, b]
             column, row = (px - origin_x) / resolution, (py - origin_y) / resolution
             on = px >= origin_x and py >= origin_y and column < width and row < height
             cost = np.float32(costs[int(row), int(column)] if on else UNKNOWN)
             if cost in (LETHAL, INSCRIBED) or (cost == UNKNOWN and not tracking_unknown):
                 collided[b] = True
             if near_goal:
-                near += critical_cost if cost >= near_collision_cost else 0.0
+                near[b] += critical_cost if cost >= near_collision_cost else 0.0
             else:
                 sums[b] += critical if cost >= near_collision_cost else cost
-        if near_goal:
-            sums[b] = np.float32(near)
-    return sums, collided
+    return (near.astype(np.float32) if near_goal else sums), collided

@@ -125,6 +125,11 @@ class CriticData:
         distance = (self.goal[0] - self.pose[0]) ** 2 + (self.goal[1] - self.pose[1]) ** 2
         return bool(distance < threshold**2)
 
+    def time_major(self) -> tuple[F32, F32]:
+        """The positions x and y time-major (T, B) m, in order in memory: the samples' own
+        arrays (copies only of data made another way)."""
+        return np.ascontiguousarray(self.x.T), np.ascontiguousarray(self.y.T)
+
     def path_points_valid(self) -> npt.NDArray[np.bool_]:
         """findPathCosts, once a cycle: which path points but the last the costmap leaves
         free to drive to, shape (P - 1,); all of them without a costmap."""

@@ -162,7 +162,7 @@ def test_path_aligns_compiled_distances_are_the_numpy_distances_to_the_bit(
     mppi.vx[:] = np.float32(rng.uniform(0.1, 0.5))
     data = mppi._samples(Cycle((0.0, 0.0, 0.0), speed, path, (3.0, 0.0), None))
     along = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(path, axis=0).T))])
-    compiled = path_align_gaps(data.x, data.y, step, along, path, valid)
+    compiled = path_align_gaps(data.x.T, data.y.T, step, along, path, valid)
     expected = path_align_gaps_in_numpy(data, step, along, path, valid)
     assert np.array_equal(compiled[1], expected[1])
     assert np.array_equal(bits(compiled[0]), bits(expected[0]))
@@ -185,8 +185,8 @@ def test_cost_critics_compiled_sums_are_the_numpy_sums_to_the_bit(
     data = mppi._samples(Cycle((0.0, 0.0, 0.2), (0.3, 0.0), path, (1.2, 0.0), grid))
     points = data.x.shape[1] // critic.trajectory_point_step
     compiled = cost_critic_sums(
-        data.x,
-        data.y,
+        data.x.T,
+        data.y.T,
         critic.trajectory_point_step,
         points,
         costs,
