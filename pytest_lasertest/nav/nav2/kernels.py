@@ -366,3 +366,20 @@ def cost_critic_sums(
             else:
                 sums[b] += critical if cost >= near_collision_cost else cost
     return (near.astype(np.float32) if near_goal else sums), collided
+
+
+@compiled("i8(f4[::1], f4[::1], f4[:, ::1])")
+def furthest_reached(end_x: Any, end_y: Any, path: Any) -> int:
+    """findPathFurthestReachedPoint over trajectory ends (B,) m and a path (P, 2) m: trajectory
+    by trajectory, the path point nearest its end (the first of equal squared distances, in
+    float32) among those at or past the furthest found so far."""
+    furthest = 0
+    for b in range(end_x.shape[0]):
+        nearest, least = furthest, np.float32(np.inf)
+        for point in range(furthest, path.shape[0]):
+            dx, dy = path[point, 0] - end_x[b], path[point, 1] - end_y[b]
+            squared = dx * dx + dy * dy
+            if squared < least:
+                nearest, least = point, squared
+        furthest = max(furthest, nearest)
+    return furthest

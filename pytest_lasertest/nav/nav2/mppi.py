@@ -27,6 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
+from pytest_lasertest.nav.nav2 import kernels
 from pytest_lasertest.nav.nav2.motion_model import F32 as F32  # re-exported
 from pytest_lasertest.nav.nav2.motion_model import changes, integrate, limit, predict
 from pytest_lasertest.nav.nav2.noise import NoiseDrawer
@@ -169,23 +170,11 @@ class Cycle:
 
 
 def _furthest_reached(end_x: F32, end_y: F32, path: F32) -> int:
-    """The sequential scan of findPathFurthestReachedPoint over ends (B,) and a path (P, 2):
-    the furthest index moves only when a trajectory's nearest point past it lies further, so
-    each move is found at once among the trajectories still to scan."""
-    squared = (path[np.newaxis, :, 0] - end_x[:, np.newaxis]) ** 2 + (
-        path[np.newaxis, :, 1] - end_y[:, np.newaxis]
-    ) ** 2  # (B, P)
-    furthest, row = 0, 0
-    while row < len(squared):
-        # argmin keeps the first of equal distances, as Nav2's strict comparison does.
-        nearest = furthest + np.argmin(squared[row:, furthest:], axis=1)
-        ahead = np.flatnonzero(nearest > furthest)
-        if not len(ahead):
-            break
-        row += int(ahead[0])
-        furthest = int(nearest[ahead[0]])
-        row += 1
-    return furthest
+    """findPathFurthestReachedPoint over ends (B,) and a path (P, 2), compiled
+    (`kernels.furthest_reached`)."""
+    return kernels.furthest_reached(
+        np.ascontiguousarray(end_x), np.ascontiguousarray(end_y), np.ascontiguousarray(path)
+    )
 
 
 # s: how near the controller's period must be to model_dt to count as equal (setOffset's eps).
