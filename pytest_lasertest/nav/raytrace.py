@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, IntArray
+from pytest_lasertest.nav import kernels
 
 
 def clipped(
@@ -73,11 +74,28 @@ def bresenham(
 ) -> IntArray:
     """The cells costmap_2d's bresenham2D visits on the line from a start cell toward each end
     cell (K,) in `steps` (K,) steps along its longer axis, and the cell it then stands on, as
-    flat indices x + y * stride, shape (M,).
+    flat indices x + y * stride, shape (M,), compiled (`kernels.bresenham`)."""
 
-    Every ray is stepped at once: each visited cell is the start, `step` cells along the
-    ray's longer axis and `wraps` along the other, and `wraps` is Bresenham's error count.
-    """
+    def ints(values: int | IntArray) -> IntArray:
+        return np.array(np.broadcast_to(values, np.shape(end_x)), dtype=np.int64)  # writable
+
+    cells: IntArray = kernels.bresenham(
+        ints(start_x), ints(start_y), ints(end_x), ints(end_y), ints(steps), stride
+    )
+    return cells
+
+
+def bresenham_in_numpy(
+    start_x: int | IntArray,
+    start_y: int | IntArray,
+    end_x: IntArray,
+    end_y: IntArray,
+    steps: IntArray,
+    stride: int,
+) -> IntArray:
+    """`bresenham` in numpy, the reference its kernel is tested against. Every ray is stepped
+    at once: each visited cell is the start, `step` cells along the ray's longer axis and
+    `wraps` along the other, and `wraps` is Bresenham's error count."""
     dx, dy = end_x - start_x, end_y - start_y
     along_x = np.abs(dx) >= np.abs(dy)
     major, minor = np.maximum(np.abs(dx), np.abs(dy)), np.minimum(np.abs(dx), np.abs(dy))

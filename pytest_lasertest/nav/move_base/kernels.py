@@ -21,41 +21,18 @@ a group's least carries from pose to pose. A cell that is measured is measured b
 of clearance.py's docstring, in their order, with no fused multiply-add (numba compiles without
 fastmath), so the least is the direct computation's to the bit;
 tests/nav/move_base/test_clearance.py holds them equal.
-
-numba compiles these when this module is imported (each for the one signature it is called
-with), outside any controller call's time, and keeps the machine code in __pycache__: the first
-import on a machine takes about 10 s, later ones a fraction of a second.
 """
 
 from __future__ import annotations
 
 import heapq
 import math
-from collections.abc import Callable
-from typing import Any, TypeVar, cast
+from typing import Any
 
-import numba
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray, IntArray
-
-Function = TypeVar("Function", bound=Callable[..., Any])
-
-
-def compiled(signature: str | None = None) -> Callable[[Function], Function]:
-    """Compile a function in nopython mode, its machine code cached on disk: now, for
-    `signature`, or else for the types of whatever compiled function calls it."""
-
-    def compile_for(function: Function) -> Function:
-        if signature is None:
-            return cast(Function, numba.njit(function, cache=True, nogil=True))
-        return cast(Function, numba.njit(signature, cache=True, nogil=True)(function))
-
-    return compile_for
-
-
-# numba's types: f8 is a float64, i8 an int64, u1 a byte, [::1] a C-contiguous axis.
-CELLS = "f8[:, ::1]"  # (N, 2) m
+from pytest_lasertest.nav.kernels import CELLS, compiled
 
 
 @compiled("void(u1[::1], i8, i8[::1], i8[::1], i8, i8, i8, i8[::1])")

@@ -17,8 +17,8 @@ from typing import Any
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.nav.kernels import CELLS, compiled
 from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
-from pytest_lasertest.nav.move_base.kernels import CELLS, compiled
 
 NO_COLLISION = -1.0  # s: what collision_time returns when no step's footprint holds min_points
 
