@@ -301,21 +301,22 @@ def path_align_gaps(
         for b in range(batch):
             qx, qy = x[now, b], y[now, b]
             moved = math.hypot(qx - x[before_now, b], qy - y[before_now, b])
-            travelled[b] += np.float32(moved)
-            while after[b] <= last and along[after[b]] <= travelled[b]:  # searchsorted right
-                after[b] += 1
-            before, capped = max(after[b] - 1, 0), min(after[b], last)
-            if after[b] > last:
+            come = travelled[b] = travelled[b] + np.float32(moved)
+            beyond = after[b]  # kept in a register: the arrays hold it between steps
+            while beyond <= last and along[beyond] <= come:  # searchsorted, side right
+                beyond += 1
+            after[b] = beyond
+            before, capped = max(beyond - 1, 0), min(beyond, last)
+            if beyond > last:
                 closest = last
-            elif travelled[b] - along[before] < along[capped] - travelled[b]:
+            elif come - along[before] < along[capped] - come:
                 closest = before
             else:
                 closest = capped
-            nearest[b] = max(nearest[b], closest)
-            if valid[nearest[b]]:
+            point = nearest[b] = max(nearest[b], closest)
+            if valid[point]:
                 counted[b] += 1
-                gap = math.hypot(path[nearest[b], 0] - qx, path[nearest[b], 1] - qy)
-                gaps[b, j - 1] = np.float32(gap)
+                gaps[b, j - 1] = np.float32(math.hypot(path[point, 0] - qx, path[point, 1] - qy))
     summed = np.empty(batch, np.float32)
     for b in range(batch):
         summed[b] = np.float32(0.0) + _pairwise_sum(gaps[b], 0, gaps.shape[1])
