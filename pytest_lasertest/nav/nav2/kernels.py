@@ -384,3 +384,27 @@ def furthest_reached(end_x: Any, end_y: Any, path: Any) -> int:
                 nearest, least = point, squared
         furthest = max(furthest, nearest)
     return furthest
+
+
+@compiled(f"f4[::1](f4[::1], {SAMPLES})")
+def control_costs(sequence: Any, noised: Any) -> Any:
+    """MPPI's control cost before its factor gamma / std^2: for each sample, the sum over the
+    steps of sequence (T,) x (noised (T, B) - sequence), (B,), a step after another, as numpy
+    adds the columns of its (B, T) view."""
+    total = np.zeros(noised.shape[1], np.float32)
+    for step in range(noised.shape[0]):
+        for b in range(noised.shape[1]):
+            total[b] += sequence[step] * (noised[step, b] - sequence[step])
+    return total
+
+
+@compiled(f"f4[::1]({SAMPLES}, f4[::1])")
+def weighted_means(noised: Any, weights: Any) -> Any:
+    """The weighted sum over the samples of noised (T, B) by weights (B,), (T,): each step's
+    products added by numpy's pairwise sum, as it adds the rows of its (B, T) view."""
+    means, products = np.empty(noised.shape[0], np.float32), np.empty(noised.shape[1], np.float32)
+    for step in range(noised.shape[0]):
+        for b in range(noised.shape[1]):
+            products[b] = noised[step, b] * weights[b]
+        means[step] = np.float32(0.0) + _pairwise_sum(products, 0, len(products))
+    return means

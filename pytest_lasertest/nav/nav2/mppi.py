@@ -273,14 +273,15 @@ class Optimizer:
 
     def _update(self, data: CriticData) -> None:
         """The softmax-weighted mean of the noised sequences becomes the sequence."""
-        s = self.settings
-        noised_vx, noised_wz, costs = data.cvx, data.cwz, data.costs
-        costs += s.gamma / s.vx_std**2 * (self.vx * (noised_vx - self.vx)).sum(axis=1)
-        costs += s.gamma / s.wz_std**2 * (self.wz * (noised_wz - self.wz)).sum(axis=1)
+        s, costs = self.settings, data.costs
+        # Time-major (T, B), as the samples lie in memory; compiled, numpy's sums to the bit.
+        noised_vx, noised_wz = (np.ascontiguousarray(cv.T) for cv in (data.cvx, data.cwz))
+        costs += s.gamma / s.vx_std**2 * kernels.control_costs(self.vx, noised_vx)
+        costs += s.gamma / s.wz_std**2 * kernels.control_costs(self.wz, noised_wz)
         weights = np.exp(-1.0 / s.temperature * (costs - costs.min()))
         weights /= weights.sum()
-        self.vx = (noised_vx * weights[:, np.newaxis]).sum(axis=0).astype(np.float32)
-        self.wz = (noised_wz * weights[:, np.newaxis]).sum(axis=0).astype(np.float32)
+        self.vx = kernels.weighted_means(noised_vx, weights)
+        self.wz = kernels.weighted_means(noised_wz, weights)
         self._constrain()
 
     def _constrain(self) -> None:

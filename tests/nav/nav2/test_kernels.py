@@ -1,7 +1,7 @@
 """The Nav2 stack's compiled loops give the numpy code's answers to the bit: the collision
 monitor's count of points inside a footprint at a pose and the time of the first step that
-holds min_points, DWB's rollouts, and MPPI's motion model, integration, CostCritic's sums and
-PathAlignCritic's distances."""
+holds min_points, DWB's rollouts, and MPPI's motion model, integration, CostCritic's sums,
+PathAlignCritic's distances and the softmax update's sums."""
 
 from __future__ import annotations
 
@@ -24,9 +24,11 @@ from pytest_lasertest.nav.nav2.dwb_trajectories import roll_out, roll_out_in_num
 from pytest_lasertest.nav.nav2.kernels import (
     NO_COLLISION,
     collision_time,
+    control_costs,
     cost_critic_sums,
     count_inside,
     path_align_gaps,
+    weighted_means,
 )
 from pytest_lasertest.nav.nav2.motion_model import (
     changes,
@@ -201,3 +203,21 @@ def test_cost_critics_compiled_sums_are_the_numpy_sums_to_the_bit(
     expected = cost_critic_sums_in_numpy(critic, data, grid)
     assert np.array_equal(compiled[1], expected[1])
     assert np.array_equal(bits(compiled[0]), bits(expected[0]))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_mppis_compiled_update_sums_are_numpys_to_the_bit(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    mppi = optimizer({"FollowPath.batch_size": 2000})
+    mppi.vx[:] = rng.uniform(-0.2, 0.5, len(mppi.vx)).astype(np.float32)
+    mppi.vx[::7] = 0.0  # where a product is a signed zero
+    path = np.array([[0.0, 0.0], [2.0, 0.0]], dtype=np.float32)
+    data = mppi._samples(Cycle((0.0, 0.0, 0.0), (0.2, 0.1), path, (2.0, 0.0), None))
+    noised = np.ascontiguousarray(data.cvx.T)  # time-major, as the samples lie
+    expected = (mppi.vx * (data.cvx - mppi.vx)).sum(axis=1)
+    assert np.array_equal(bits(control_costs(mppi.vx, noised)), bits(expected))
+    weights = rng.exponential(1.0, 2000).astype(np.float32)
+    weights[::5] = 0.0
+    weights /= weights.sum()
+    expected = (data.cvx * weights[:, np.newaxis]).sum(axis=0).astype(np.float32)
+    assert np.array_equal(bits(weighted_means(noised, weights)), bits(expected))
