@@ -1,9 +1,11 @@
 """The navigation stacks' compiled code: the `compiled` factory every kernels module of the
-stacks compiles with (nav/move_base/kernels.py, nav/nav2/kernels.py), and the kernel they share,
-costmap_2d's Bresenham line (raytrace.py).
+stacks compiles with (nav/move_base/kernels.py, nav/nav2/kernels.py), and the kernels they share:
+costmap_2d's Bresenham line (raytrace.py) and numpy's pairwise summation, with which the stacks'
+kernels add up a row where the numpy code they replace summed one.
 
 The line's cells are whole-number arithmetic, exact in any order: raytrace.bresenham_in_numpy's
-to the unit, which tests/nav/test_raytrace.py holds.
+to the unit, which tests/nav/test_raytrace.py holds, as it holds the pairwise sum equal to
+numpy's sum of a float32 row to the bit.
 
 numba compiles these when this module is imported (each for the one signature it is called
 with), outside any controller call's time, and keeps the machine code in __pycache__: the first
@@ -55,3 +57,40 @@ def bresenham(start_x: Any, start_y: Any, end_x: Any, end_y: Any, steps: Any, st
             cells[at] = origin + step * along + (major // 2 + step * minor) // divisor * across
             at += 1
     return cells
+
+
+@compiled("f4(f4[::1], i8, i8)")
+def pairwise_sum(values: Any, start: int, count: int) -> Any:
+    """numpy's pairwise summation of values[start:start + count] (float32): a plain sum under
+    8 values, eight running sums joined pairwise up to 128, halves of a multiple of 8 above."""
+    if count < 8:
+        total = np.float32(-0.0)
+        for index in range(start, start + count):
+            total += values[index]
+        return total
+    if count > 128:
+        half = count // 2
+        half -= half % 8
+        return pairwise_sum(values, start, half) + pairwise_sum(values, start + half, count - half)
+    s0, s1, s2, s3 = values[start], values[start + 1], values[start + 2], values[start + 3]
+    s4, s5, s6, s7 = values[start + 4], values[start + 5], values[start + 6], values[start + 7]
+    index = start + 8
+    while index < start + count - count % 8:
+        s0, s1, s2, s3 = (
+            s0 + values[index],
+            s1 + values[index + 1],
+            s2 + values[index + 2],
+            s3 + values[index + 3],
+        )
+        s4, s5, s6, s7 = (
+            s4 + values[index + 4],
+            s5 + values[index + 5],
+            s6 + values[index + 6],
+            s7 + values[index + 7],
+        )
+        index += 8
+    total = ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7))
+    while index < start + count:
+        total += values[index]
+        index += 1
+    return total

@@ -1,10 +1,12 @@
-"""costmap_2d's Bresenham line, compiled, visits the numpy code's cells, ray by ray."""
+"""The kernels both stacks share: costmap_2d's Bresenham line, compiled, visits the numpy code's
+cells, ray by ray; the pairwise sum adds a float32 row as numpy's sum does."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
+from pytest_lasertest.nav.kernels import pairwise_sum
 from pytest_lasertest.nav.raytrace import bresenham, bresenham_in_numpy
 
 
@@ -29,3 +31,12 @@ def test_the_compiled_line_visits_the_numpy_lines_cells_in_order(seed: int) -> N
 def test_no_rays_visit_no_cells() -> None:
     nothing = np.zeros(0, dtype=np.int64)
     assert len(bresenham(5, 5, nothing, nothing, nothing, 200)) == 0
+
+
+@pytest.mark.parametrize("count", [0, 1, 7, 8, 13, 127, 128, 129, 300, 2000, 5003])
+def test_the_pairwise_sum_of_a_row_is_numpys_sum_to_the_bit(count: int) -> None:
+    # Values of many magnitudes and both signs, where any other order of adding would show.
+    rng = np.random.default_rng(count)
+    row = (rng.normal(0.0, 1.0, count) * 10.0 ** rng.integers(-3, 4, count)).astype(np.float32)
+    total = np.float32(0.0) + pairwise_sum(row, 0, count)
+    assert np.float32(total).view(np.uint32) == row.sum().view(np.uint32)

@@ -1,12 +1,15 @@
 """Compiled kernels of the Nav2 stack: the collision monitor's getCollisionTime loop of
-projectState, transformPoints and isPointInside (collision_monitor.py), and DWB's rollouts, its
+projectState, transformPoints and isPointInside (collision_monitor.py); DWB's rollouts, its
 MapGrid critics' distance transform and its reading of the cells under every rollout pose
-(dwb_trajectories.py, dwb_critics.py): one call where the numpy code made hundreds.
+(dwb_trajectories.py, dwb_critics.py); MPPI's motion model and integration (motion_model.py),
+its CostCritic and PathAlignCritic (critics.py), findPathFurthestReachedPoint and the softmax
+update's sums (mppi.py): one call where the numpy code made hundreds.
 
 Each operation is the numpy code's, in its order, with no fused multiply-add (numba compiles
-without fastmath), and the cosines and sines are the C library's, as numpy's and Python's math
-module's are: what each returns is the numpy code's to the bit (the distances are whole numbers,
-exact in any order), which tests/nav/nav2/test_kernels.py and the DWB tests hold.
+without fastmath); the float64 cosines and sines are the C library's, as numpy's and Python's
+math module's are, and the float32 ones stay numpy's; sums are added in numpy's order (a column
+after another, or pairwise along a row, `nav.kernels.pairwise_sum`): what each returns is the
+numpy code's to the bit, which tests/nav/nav2/test_kernels.py and the DWB tests hold.
 """
 
 from __future__ import annotations
@@ -17,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from pytest_lasertest.model.geometry import FloatArray
-from pytest_lasertest.nav.kernels import CELLS, compiled
+from pytest_lasertest.nav.kernels import CELLS, compiled, pairwise_sum
 from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
 
 NO_COLLISION = -1.0  # s: what collision_time returns when no step's footprint holds min_points
@@ -241,45 +244,6 @@ def advance(vx: Any, cos: Any, sin: Any, dt: Any, x0: Any, y0: Any) -> tuple[Any
     return x, y
 
 
-@compiled("f4(f4[::1], i8, i8)")
-def _pairwise_sum(values: Any, start: int, count: int) -> Any:
-    """numpy's pairwise summation of values[start:start + count] (float32): a plain sum under
-    8 values, eight running sums joined pairwise up to 128, halves of a multiple of 8 above."""
-    if count < 8:
-        total = np.float32(-0.0)
-        for index in range(start, start + count):
-            total += values[index]
-        return total
-    if count > 128:
-        half = count // 2
-        half -= half % 8
-        return _pairwise_sum(values, start, half) + _pairwise_sum(
-            values, start + half, count - half
-        )
-    s0, s1, s2, s3 = values[start], values[start + 1], values[start + 2], values[start + 3]
-    s4, s5, s6, s7 = values[start + 4], values[start + 5], values[start + 6], values[start + 7]
-    index = start + 8
-    while index < start + count - count % 8:
-        s0, s1, s2, s3 = (
-            s0 + values[index],
-            s1 + values[index + 1],
-            s2 + values[index + 2],
-            s3 + values[index + 3],
-        )
-        s4, s5, s6, s7 = (
-            s4 + values[index + 4],
-            s5 + values[index + 5],
-            s6 + values[index + 6],
-            s7 + values[index + 7],
-        )
-        index += 8
-    total = ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7))
-    while index < start + count:
-        total += values[index]
-        index += 1
-    return total
-
-
 @compiled(f"Tuple((f4[::1], i8[::1]))({SAMPLES}, {SAMPLES}, i8, f8[::1], f4[:, ::1], b1[::1])")
 def path_align_gaps(
     x: Any, y: Any, step: int, along: FloatArray, path: Any, valid: Any
@@ -319,7 +283,7 @@ def path_align_gaps(
                 gaps[b, j - 1] = np.float32(math.hypot(path[point, 0] - qx, path[point, 1] - qy))
     summed = np.empty(batch, np.float32)
     for b in range(batch):
-        summed[b] = np.float32(0.0) + _pairwise_sum(gaps[b], 0, gaps.shape[1])
+        summed[b] = np.float32(0.0) + pairwise_sum(gaps[b], 0, gaps.shape[1])
     return summed, counted
 
 
@@ -406,5 +370,5 @@ def weighted_means(noised: Any, weights: Any) -> Any:
     for step in range(noised.shape[0]):
         for b in range(noised.shape[1]):
             products[b] = noised[step, b] * weights[b]
-        means[step] = np.float32(0.0) + _pairwise_sum(products, 0, len(products))
+        means[step] = np.float32(0.0) + pairwise_sum(products, 0, len(products))
     return means
