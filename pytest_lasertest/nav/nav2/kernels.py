@@ -309,8 +309,8 @@ def cost_critic_sums(
     """CostCritic over the first `points` step-th points of each trajectory, from time-major
     positions (T, B) m: the sum of their costs (B,), critical_cost from near_collision_cost up
     and nothing else near the goal, and whether any point meets a lethal, inscribed or
-    (untracked) unknown cell, or lies off the grid (B,). The cells as worldToMapFloat finds
-    them, in float32; the sum a point after another, as numpy adds the columns of
+    (untracked) unknown cell, (B,); off the grid reads as unknown. The cells as worldToMapFloat
+    finds them, in float32; the sum a point after another, as numpy adds the columns of
     critics.cost_critic_sums_in_numpy, in float32, or near the goal in float64 (numpy's type
     for a choice between two Python floats)."""
     height, width = costs.shape
