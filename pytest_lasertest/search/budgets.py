@@ -25,9 +25,9 @@ class Budget:
         return Budget(examples, self.shrink_simulations, self.explain)
 
 
-# dev keeps a local run short; ci runs the README's `pytest examples/` with `-n 2` on 2 cores in
-# about a minute, a third of the 3 minutes a pull request may take; triage replays a stored
-# failure and spends its budget on shrinking and explaining it.
+# dev keeps a local run short; ci tries more perturbations for a gate on a CI service; nightly
+# explores; triage replays a stored failure and spends its budget on shrinking and explaining
+# it. What a run costs is measured, not promised here: docs/explanation/performance.md.
 BUDGETS: dict[BudgetName, Budget] = {
     "dev": Budget(examples=10, shrink_simulations=24, explain=False),
     "ci": Budget(examples=16, shrink_simulations=24, explain=False),
