@@ -45,11 +45,9 @@ class ConstraintCritic:
         return math.copysign(math.hypot(s.vx_min, s.vy_max), s.vx_min if s.vx_min > 0 else -1)
 
     def __call__(self, data: CriticData) -> None:
-        fastest, slowest = self.max_vel_constraint, self.min_vel_constraint
-        beyond = np.maximum(data.vx - fastest, 0.0) + np.maximum(slowest - data.vx, 0.0)
-        data.costs += _powered(
-            beyond.sum(axis=1) * np.float32(data.model_dt), self.weight, self.power
-        )
+        fastest, slowest = np.float32(self.max_vel_constraint), np.float32(self.min_vel_constraint)
+        beyond = kernels.speed_beyond(data.time_major_speeds(), fastest, slowest)
+        data.costs += _powered(beyond * np.float32(data.model_dt), self.weight, self.power)
 
 
 @dataclass(frozen=True)
@@ -63,7 +61,8 @@ class GoalCritic:
     def __call__(self, data: CriticData) -> None:
         if not data.within(self.threshold_to_consider):
             return
-        distance = np.hypot(data.x - data.goal[0], data.y - data.goal[1]).mean(axis=1)
+        goal = (np.float32(data.goal[0]), np.float32(data.goal[1]))
+        distance = kernels.mean_distances(*data.time_major(), *goal)
         data.costs += _powered(distance, self.weight, self.power)
 
 
@@ -78,8 +77,10 @@ class PreferForwardCritic:
     def __call__(self, data: CriticData) -> None:
         if data.within(self.threshold_to_consider):
             return
-        backwards = np.maximum(-data.vx, 0.0).sum(axis=1) * np.float32(data.model_dt)
-        data.costs += _powered(backwards, self.weight, self.power)
+        reversing = kernels.speed_beyond(
+            data.time_major_speeds(), np.float32(np.inf), np.float32(0)
+        )
+        data.costs += _powered(reversing * np.float32(data.model_dt), self.weight, self.power)
 
 
 @dataclass(frozen=True)

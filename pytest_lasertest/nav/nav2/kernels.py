@@ -372,3 +372,33 @@ def weighted_means(noised: Any, weights: Any) -> Any:
             products[b] = noised[step, b] * weights[b]
         means[step] = np.float32(0.0) + pairwise_sum(products, 0, len(products))
     return means
+
+
+@compiled(f"f4[::1]({SAMPLES}, {SAMPLES}, f4, f4)")
+def mean_distances(x: Any, y: Any, goal_x: Any, goal_y: Any) -> Any:
+    """GoalCritic's mean over the steps of each trajectory's distance (float32 m) from the goal,
+    from time-major positions (T, B) m: summed a step after another, as numpy adds the columns
+    of its (B, T) view, and divided by T in float64, as numpy's mean divides by its count."""
+    total = np.zeros(x.shape[1], np.float32)
+    for step in range(x.shape[0]):
+        for b in range(x.shape[1]):
+            total[b] += np.float32(math.hypot(x[step, b] - goal_x, y[step, b] - goal_y))
+    means = np.empty(x.shape[1], np.float32)
+    for b in range(x.shape[1]):
+        means[b] = np.float32(np.float64(total[b]) / x.shape[0])
+    return means
+
+
+@compiled(f"f4[::1]({SAMPLES}, f4, f4)")
+def speed_beyond(vx: Any, fastest: Any, slowest: Any) -> Any:
+    """The sum over the steps of how far each sample's speed vx (T, B) m/s lies above `fastest`
+    plus how far below `slowest` (float32 m/s), a step after another, as numpy adds the columns
+    of its (B, T) view; each part clipped at 0 as numpy's maximum does (+0.0 for either zero).
+    With fastest +inf and slowest 0, PreferForwardCritic's sum of reversing."""
+    total = np.zeros(vx.shape[1], np.float32)
+    zero = np.float32(0.0)
+    for step in range(vx.shape[0]):
+        for b in range(vx.shape[1]):
+            above, below = vx[step, b] - fastest, slowest - vx[step, b]
+            total[b] += (above if above > zero else zero) + (below if below > zero else zero)
+    return total

@@ -131,6 +131,10 @@ class CriticData:
         arrays (copies only of data made another way)."""
         return np.ascontiguousarray(self.x.T), np.ascontiguousarray(self.y.T)
 
+    def time_major_speeds(self) -> F32:
+        """The speeds vx time-major (T, B) m/s, in order in memory (see `time_major`)."""
+        return np.ascontiguousarray(self.vx.T)
+
     def path_points_valid(self) -> npt.NDArray[np.bool_]:
         """findPathCosts, once a cycle: which path points but the last the costmap leaves
         free to drive to, shape (P - 1,); all of them without a costmap."""

@@ -1,7 +1,8 @@
 """The Nav2 stack's compiled loops give the numpy code's answers to the bit: the collision
 monitor's count of points inside a footprint at a pose and the time of the first step that
 holds min_points, DWB's rollouts, and MPPI's motion model, integration, CostCritic's sums,
-PathAlignCritic's distances and the softmax update's sums."""
+PathAlignCritic's distances, the GoalCritic's means, the ConstraintCritic's and
+PreferForwardCritic's sums and the softmax update's sums."""
 
 from __future__ import annotations
 
@@ -27,7 +28,9 @@ from pytest_lasertest.nav.nav2.kernels import (
     control_costs,
     cost_critic_sums,
     count_inside,
+    mean_distances,
     path_align_gaps,
+    speed_beyond,
     weighted_means,
 )
 from pytest_lasertest.nav.nav2.motion_model import (
@@ -221,3 +224,25 @@ def test_mppis_compiled_update_sums_are_numpys_to_the_bit(seed: int) -> None:
     weights /= weights.sum()
     expected = (data.cvx * weights[:, np.newaxis]).sum(axis=0).astype(np.float32)
     assert np.array_equal(bits(weighted_means(noised, weights)), bits(expected))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_mppis_compiled_goal_constraint_and_forward_sums_are_numpys_to_the_bit(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    mppi = optimizer({"FollowPath.batch_size": 2000})
+    mppi.vx[:] = rng.uniform(-0.3, 0.4, len(mppi.vx)).astype(np.float32)
+    path = np.array([[0.0, 0.0], [2.0, 0.0]], dtype=np.float32)
+    data = mppi._samples(Cycle((0.0, 0.0, 0.3), (0.1, 0.0), path, (0.9, 0.4), None))
+    speeds = data.time_major_speeds().copy()  # (T, B), and vx its (B, T) view, as the critics'
+    speeds[:, ::9] = 0.0  # at rest, and the signed zeros of -vx
+    vx = speeds.T
+    goal = np.hypot(data.x - 0.9, data.y - 0.4).mean(axis=1)
+    ours = mean_distances(*data.time_major(), np.float32(0.9), np.float32(0.4))
+    assert np.array_equal(bits(ours), bits(goal))
+    fastest, slowest = 0.26, -0.1  # m/s, the ConstraintCritic's
+    beyond = (np.maximum(vx - fastest, 0.0) + np.maximum(slowest - vx, 0.0)).sum(axis=1)
+    ours = speed_beyond(speeds, np.float32(fastest), np.float32(slowest))
+    assert np.array_equal(bits(ours), bits(beyond))
+    backwards = np.maximum(-vx, 0.0).sum(axis=1)
+    ours = speed_beyond(speeds, np.float32(np.inf), np.float32(0.0))
+    assert np.array_equal(bits(ours), bits(backwards))
