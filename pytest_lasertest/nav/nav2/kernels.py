@@ -402,3 +402,21 @@ def speed_beyond(vx: Any, fastest: Any, slowest: Any) -> Any:
             above, below = vx[step, b] - fastest, slowest - vx[step, b]
             total[b] += (above if above > zero else zero) + (below if below > zero else zero)
     return total
+
+
+@compiled("void(f4[::1], f4[::1], f4, f4, f4)")
+def bound_steps(vx: Any, wz: Any, up: Any, down: Any, turn: Any) -> None:
+    """applyControlSequenceConstraints' second part, in place: each step of the sequence (T,)
+    m/s and rad/s held within `up` faster and `down` (negative) slower than the step before
+    (mirrored when not moving forward), and `turn` either way, clipped as Python's min and max
+    of float32 scalars clip (a value kept against an equal bound), as motion_model.limit's
+    caller did."""
+    for step in range(1, len(vx)):
+        last_vx, last_wz = vx[step - 1], wz[step - 1]
+        forward = last_vx > 0
+        low, high = last_vx + (down if forward else -up), last_vx + (up if forward else -down)
+        value = low if low > vx[step] else vx[step]
+        vx[step] = high if high < value else value
+        low, high = last_wz - turn, last_wz + turn
+        value = low if low > wz[step] else wz[step]
+        wz[step] = high if high < value else value

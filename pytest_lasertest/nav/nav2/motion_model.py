@@ -4,7 +4,8 @@ every sample at once, time-major (T, B) in float32 as MPPI's xtensor arrays are.
 
 Read in ros-navigation/navigation2 at jazzy f4108e5b: nav2_mppi_controller/include/
 nav2_mppi_controller/motion_models.hpp and src/optimizer.cpp. The loops are compiled
-(`kernels.predict`, `kernels.running_sum`, `kernels.advance`); the cosines and sines stay
+(`kernels.predict`, `kernels.running_sum`, `kernels.advance`, and the optimizer's
+`kernels.bound_steps`); the cosines and sines stay
 numpy's, whose float32 ones are not the C library's. `predict_in_numpy` and
 `integrate_in_numpy` are the references tests/nav/nav2/test_kernels.py holds them equal to.
 """
@@ -34,7 +35,8 @@ def changes(model_dt: float, ax_max: float, ax_min: float, az_max: float) -> Cha
 def limit(last_vx: np.float32, last_wz: np.float32, change: Changes) -> Bounds:
     """The bounds [low_vx, high_vx, low_wz, high_wz] on the speeds of the step after speeds
     `last_vx` (m/s), `last_wz` (rad/s): ax_min brakes a robot moving forward, and mirrored one
-    that is not (DiffDrive's predict and applyControlSequenceConstraints alike)."""
+    that is not (DiffDrive's predict and applyControlSequenceConstraints alike). The reference
+    `kernels.bound_steps` is tested against, step by step."""
     up, down, turn = change
     forward = last_vx > 0
     low_vx = last_vx + (down if forward else -up)

@@ -29,7 +29,7 @@ import numpy.typing as npt
 from pytest_lasertest.nav.move_base.cost_values import INSCRIBED, LETHAL, UNKNOWN
 from pytest_lasertest.nav.nav2 import kernels
 from pytest_lasertest.nav.nav2.motion_model import F32 as F32  # re-exported
-from pytest_lasertest.nav.nav2.motion_model import changes, integrate, limit, predict
+from pytest_lasertest.nav.nav2.motion_model import changes, integrate, predict
 from pytest_lasertest.nav.nav2.noise import NoiseDrawer
 
 # Savitzky-Golay, quadratic, 9 points (utils.hpp savitskyGolayFilter).
@@ -293,12 +293,7 @@ class Optimizer:
         s = self.settings
         np.clip(self.vx, s.vx_min, s.vx_max, out=self.vx)
         np.clip(self.wz, -s.wz_max, s.wz_max, out=self.wz)
-        for step in range(1, s.time_steps):
-            low_vx, high_vx, low_wz, high_wz = limit(
-                self.vx[step - 1], self.wz[step - 1], self._changes
-            )
-            self.vx[step] = min(max(self.vx[step], low_vx), high_vx)
-            self.wz[step] = min(max(self.wz[step], low_wz), high_wz)
+        kernels.bound_steps(self.vx, self.wz, *self._changes)
 
     def _smooth(self) -> None:
         """savitskyGolayFilter over the sequence, the last four commands before it."""

@@ -24,6 +24,7 @@ from pytest_lasertest.nav.nav2.dwb_settings import DwbSettings
 from pytest_lasertest.nav.nav2.dwb_trajectories import roll_out, roll_out_in_numpy, sample_twists
 from pytest_lasertest.nav.nav2.kernels import (
     NO_COLLISION,
+    bound_steps,
     collision_time,
     control_costs,
     cost_critic_sums,
@@ -37,6 +38,7 @@ from pytest_lasertest.nav.nav2.motion_model import (
     changes,
     integrate,
     integrate_in_numpy,
+    limit,
     predict,
     predict_in_numpy,
 )
@@ -246,3 +248,20 @@ def test_mppis_compiled_goal_constraint_and_forward_sums_are_numpys_to_the_bit(s
     backwards = np.maximum(-vx, 0.0).sum(axis=1)
     ours = speed_beyond(speeds, np.float32(np.inf), np.float32(0.0))
     assert np.array_equal(bits(ours), bits(backwards))
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_mppis_compiled_step_bounds_clip_as_pythons_min_and_max_do(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    change = changes(0.05, 0.5, -3.0 if seed % 2 else -0.5, 3.2)
+    vx, wz = noised_controls(rng, 2, 56)[:, 0]  # a sequence (T,) each, zeros of both signs
+    expected_vx, expected_wz = vx.copy(), wz.copy()
+    for step in range(1, len(vx)):  # the optimizer's loop before the kernel
+        low_vx, high_vx, low_wz, high_wz = limit(
+            expected_vx[step - 1], expected_wz[step - 1], change
+        )
+        expected_vx[step] = min(max(expected_vx[step], low_vx), high_vx)
+        expected_wz[step] = min(max(expected_wz[step], low_wz), high_wz)
+    bound_steps(vx, wz, *change)
+    assert np.array_equal(bits(vx), bits(expected_vx))
+    assert np.array_equal(bits(wz), bits(expected_wz))
