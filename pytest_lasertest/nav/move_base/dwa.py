@@ -34,6 +34,7 @@ import numpy as np
 import numpy.typing as npt
 
 from pytest_lasertest.model.geometry import FloatArray
+from pytest_lasertest.nav.move_base import kernels
 from pytest_lasertest.nav.move_base.clearance import Edges, Poses, cell_within, least_gaps
 from pytest_lasertest.nav.move_base.costmap import InflationCost
 
@@ -165,19 +166,8 @@ class LocalPlanner:
             )
         ).astype(np.int64)
         dt = settings.sim_time / np.maximum(steps, 1)  # (S,) s
-        # Step j of each is the pose after j steps; past its own last step it stays there.
-        j = np.arange(int(steps.max(initial=1)))
-        turned = np.minimum(j, steps[:, np.newaxis] - 1)
-        yaw = pose[2] + (angular * dt)[:, np.newaxis] * turned  # (S, T) rad
-        heading = np.concatenate([np.full((len(linear), 1), pose[2]), yaw[:, :-1]], axis=1)
-        moving = (j > 0) & (j < steps[:, np.newaxis])
-        advance = (linear * dt)[:, np.newaxis] * moving  # (S, T) m
-        # The heading's cosine and sine only where the rollout moves (about half its steps):
-        # elsewhere the advance is zero, and so is what it adds.
-        cos = np.cos(heading, out=np.zeros_like(heading), where=moving)
-        sin = np.sin(heading, out=np.zeros_like(heading), where=moving)
-        x = pose[0] + np.cumsum(advance * cos, axis=1)
-        y = pose[1] + np.cumsum(advance * sin, axis=1)
+        start = (float(pose[0]), float(pose[1]), float(pose[2]))
+        x, y, yaw = kernels.dwa_rollouts(start, linear, angular, steps, dt)  # compiled
         return Rollouts(linear, angular, x, y, yaw)
 
     def scores(
@@ -373,3 +363,28 @@ def _within(points: FloatArray, x: FloatArray, y: FloatArray, reach: float) -> F
     inside &= (points[:, 1] >= y.min() - reach) & (points[:, 1] <= y.max() + reach)
     kept: FloatArray = points[inside]
     return kept
+
+
+def roll_out_in_numpy(
+    pose: tuple[float, float, float],
+    linear: FloatArray,
+    angular: FloatArray,
+    steps: npt.NDArray[np.int64],
+    dt: FloatArray,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """`kernels.dwa_rollouts` in numpy, the reference it is tested against: x, y and yaw (S, T)
+    of S samples rolled out from `pose` in `steps` (S,) steps of dt (S,) s."""
+    # Step j of each is the pose after j steps; past its own last step it stays there.
+    j = np.arange(int(steps.max(initial=1)))
+    turned = np.minimum(j, steps[:, np.newaxis] - 1)
+    yaw = pose[2] + (angular * dt)[:, np.newaxis] * turned  # (S, T) rad
+    heading = np.concatenate([np.full((len(linear), 1), pose[2]), yaw[:, :-1]], axis=1)
+    moving = (j > 0) & (j < steps[:, np.newaxis])
+    advance = (linear * dt)[:, np.newaxis] * moving  # (S, T) m
+    # The heading's cosine and sine only where the rollout moves (about half its steps):
+    # elsewhere the advance is zero, and so is what it adds.
+    cos = np.cos(heading, out=np.zeros_like(heading), where=moving)
+    sin = np.sin(heading, out=np.zeros_like(heading), where=moving)
+    x = pose[0] + np.cumsum(advance * cos, axis=1)
+    y = pose[1] + np.cumsum(advance * sin, axis=1)
+    return x, y, yaw

@@ -349,3 +349,35 @@ def any_within(points: FloatArray, lethal: FloatArray, reach: float) -> Any:
                 near[point] = True
                 break
     return near
+
+
+ROLLOUT = "UniTuple(f8[:, ::1], 3)"  # x, y and yaw (S, T)
+
+
+@compiled(f"{ROLLOUT}(UniTuple(f8, 3), f8[::1], f8[::1], i8[::1], f8[::1])")
+def dwa_rollouts(
+    pose: tuple[float, float, float],
+    linear: FloatArray,
+    angular: FloatArray,
+    steps: IntArray,
+    dt: FloatArray,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """DWA's rollouts from `pose` (m, m, rad) of S samples (linear m/s, angular rad/s), in
+    `steps` (S,) steps of dt (S,) s: x, y and yaw (S, T) m, m, rad after each step, a rollout's
+    last pose repeated past its end; each step moves along the heading of the step before.
+    dwa.roll_out_in_numpy's operations, in its order (its running sum along each row)."""
+    count, longest = len(linear), max(int(steps.max()) if len(steps) else 1, 1)
+    x, y, yaw = np.empty((count, longest)), np.empty((count, longest)), np.empty((count, longest))
+    for s in range(count):
+        turn, advance = angular[s] * dt[s], linear[s] * dt[s]
+        along_x, along_y = 0.0, 0.0
+        for j in range(longest):
+            yaw[s, j] = pose[2] + turn * min(j, steps[s] - 1)
+            moving = 0 < j < steps[s]
+            heading = pose[2] if j == 0 else yaw[s, j - 1]
+            moved = advance * (1.0 if moving else 0.0)
+            step_x = moved * (math.cos(heading) if moving else 0.0)
+            step_y = moved * (math.sin(heading) if moving else 0.0)
+            along_x, along_y = (step_x, step_y) if j == 0 else (along_x + step_x, along_y + step_y)
+            x[s, j], y[s, j] = pose[0] + along_x, pose[1] + along_y
+    return x, y, yaw

@@ -17,6 +17,7 @@ from pytest_lasertest.nav.move_base.dwa import (
     Oscillation,
     Rollouts,
     Surroundings,
+    roll_out_in_numpy,
     velocity_samples,
 )
 
@@ -491,3 +492,25 @@ def test_after_the_restriction_is_lifted_one_turn_back_the_other_way_restricts_n
     assert flags.allowed(LINEAR, ANGULAR).all()
     flags.record((0.0, 0.0, -0.3), SPIN_LEFT, SETTINGS.min_trans_vel)
     assert flags.allowed(LINEAR, ANGULAR).all()
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_the_compiled_rollouts_are_the_numpy_rollouts_to_the_bit(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    settings = dataclasses.replace(SETTINGS, vx_samples=int(rng.integers(3, 12)), min_vel_x=-0.2)
+    planner = LocalPlanner(settings, FOOTPRINT, COST, HUSKY_PERIOD, RESOLUTION, WINDOW)
+    for _ in range(10):
+        pose = (float(rng.uniform(-5, 5)), float(rng.uniform(-5, 5)), float(rng.uniform(-4, 4)))
+        speed = (float(rng.uniform(-0.2, 0.5)), float(rng.uniform(-1.0, 1.0)))
+        rollouts = planner.rollouts(pose, speed)
+        s = planner.settings
+        steps = np.ceil(
+            np.maximum(
+                s.sim_time * np.abs(rollouts.linear) / s.sim_granularity,
+                s.sim_time * np.abs(rollouts.angular) / s.angular_sim_granularity,
+            )
+        ).astype(np.int64)
+        dt = s.sim_time / np.maximum(steps, 1)
+        expected = roll_out_in_numpy(pose, rollouts.linear, rollouts.angular, steps, dt)
+        for ours, theirs in zip((rollouts.x, rollouts.y, rollouts.yaw), expected, strict=True):
+            assert np.array_equal(ours.view(np.uint64), theirs.view(np.uint64))
