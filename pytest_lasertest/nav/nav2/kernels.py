@@ -188,8 +188,8 @@ SAMPLES = "f4[:, ::1]"
 
 @compiled()
 def _clip(value: Any, low: Any, high: Any) -> Any:
-    """numpy's clip of one value: its _NPY_MIN(_NPY_MAX(value, low), high), which keeps the
-    value against an equal bound (a signed zero included)."""
+    """numpy's clip of one value: its _NPY_MIN(_NPY_MAX(value, low), high), which takes the
+    bound where the value equals it (a zero takes the bound's sign)."""
     value = value if value > low else low
     return value if value < high else high
 
@@ -202,7 +202,7 @@ def predict(
     speeds (T, B), from (vx0, wz0) at step 0; each later step's the noised control of the step
     before, clipped to at most `up` faster and `down` (negative) slower than the speed before
     it (mirrored when not moving forward) and `turn` either way. motion_model.predict_in_numpy's
-    operations, its clip as numpy's (a value kept unless beyond a bound, in that order)."""
+    operations, its clip as numpy's (`_clip`)."""
     steps, batch = noised_vx.shape
     vx, wz = np.empty_like(noised_vx), np.empty_like(noised_wz)
     vx[0, :], wz[0, :] = vx0, wz0
