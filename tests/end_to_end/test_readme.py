@@ -42,8 +42,9 @@ def test_the_quickstart_is_one_command_for_the_main_job_and_one_for_the_tests() 
     commands = re.findall(r"```bash\n(.*?)\n```", quickstart, re.DOTALL)
     assert len(commands) == 2
     assert commands[0].endswith("pytest examples/")
-    # The tests run on every core, each documentation page's commands on one worker, in order.
-    assert commands[1].endswith("pytest -n auto --dist loadgroup tests/")
+    # The tests run on every core, each documentation page's commands on one worker, in order,
+    # and the slowest are listed.
+    assert commands[1].endswith("pytest -n auto --dist loadgroup --durations=25 tests/")
     assert all("\n" not in command for command in commands)
 
 
