@@ -5,9 +5,9 @@ every sample at once, time-major (T, B) in float32 as MPPI's xtensor arrays are.
 Read in ros-navigation/navigation2 at jazzy f4108e5b: nav2_mppi_controller/include/
 nav2_mppi_controller/motion_models.hpp and src/optimizer.cpp. The loops are compiled
 (`kernels.predict`, `kernels.running_sum`, `kernels.advance`, and the optimizer's
-`kernels.bound_steps`); the cosines and sines stay
-numpy's, whose float32 ones are not the C library's. `predict_in_numpy` and
-`integrate_in_numpy` are the references tests/nav/nav2/test_kernels.py holds them equal to.
+`kernels.bound_steps`); the cosines and sines stay numpy's, whose float32 ones are not the C
+library's. `predict_in_numpy`, `integrate_in_numpy` and `limit` are the references
+tests/nav/nav2/test_kernels.py holds them equal to.
 """
 
 from __future__ import annotations
