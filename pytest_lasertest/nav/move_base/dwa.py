@@ -158,14 +158,7 @@ class LocalPlanner:
     def rollouts(self, pose: tuple[float, float, float], velocity: tuple[float, float]) -> Rollouts:
         """Every sampled velocity rolled out from `pose` for `sim_time`."""
         linear, angular = self._samples(velocity)
-        settings = self.settings
-        steps = np.ceil(
-            np.maximum(
-                settings.sim_time * np.abs(linear) / settings.sim_granularity,
-                settings.sim_time * np.abs(angular) / settings.angular_sim_granularity,
-            )
-        ).astype(np.int64)
-        dt = settings.sim_time / np.maximum(steps, 1)  # (S,) s
+        steps, dt = time_steps(self.settings, linear, angular)
         start = (float(pose[0]), float(pose[1]), float(pose[2]))
         x, y, yaw = kernels.dwa_rollouts(start, linear, angular, steps, dt)  # compiled
         return Rollouts(linear, angular, x, y, yaw)
@@ -363,6 +356,21 @@ def _within(points: FloatArray, x: FloatArray, y: FloatArray, reach: float) -> F
     inside &= (points[:, 1] >= y.min() - reach) & (points[:, 1] <= y.max() + reach)
     kept: FloatArray = points[inside]
     return kept
+
+
+def time_steps(
+    settings: DwaSettings, linear: FloatArray, angular: FloatArray
+) -> tuple[npt.NDArray[np.int64], FloatArray]:
+    """How many steps each sample (S,) rolls out in, of sim_granularity m or
+    angular_sim_granularity rad at most, and each one's step dt (S,) s."""
+    steps = np.ceil(
+        np.maximum(
+            settings.sim_time * np.abs(linear) / settings.sim_granularity,
+            settings.sim_time * np.abs(angular) / settings.angular_sim_granularity,
+        )
+    ).astype(np.int64)
+    dt: FloatArray = settings.sim_time / np.maximum(steps, 1)
+    return steps, dt
 
 
 def roll_out_in_numpy(

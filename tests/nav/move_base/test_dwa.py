@@ -18,6 +18,7 @@ from pytest_lasertest.nav.move_base.dwa import (
     Rollouts,
     Surroundings,
     roll_out_in_numpy,
+    time_steps,
     velocity_samples,
 )
 
@@ -503,14 +504,7 @@ def test_the_compiled_rollouts_are_the_numpy_rollouts_to_the_bit(seed: int) -> N
         pose = (float(rng.uniform(-5, 5)), float(rng.uniform(-5, 5)), float(rng.uniform(-4, 4)))
         speed = (float(rng.uniform(-0.2, 0.5)), float(rng.uniform(-1.0, 1.0)))
         rollouts = planner.rollouts(pose, speed)
-        s = planner.settings
-        steps = np.ceil(
-            np.maximum(
-                s.sim_time * np.abs(rollouts.linear) / s.sim_granularity,
-                s.sim_time * np.abs(rollouts.angular) / s.angular_sim_granularity,
-            )
-        ).astype(np.int64)
-        dt = s.sim_time / np.maximum(steps, 1)
+        steps, dt = time_steps(planner.settings, rollouts.linear, rollouts.angular)
         expected = roll_out_in_numpy(pose, rollouts.linear, rollouts.angular, steps, dt)
         for ours, theirs in zip((rollouts.x, rollouts.y, rollouts.yaw), expected, strict=True):
             assert np.array_equal(ours.view(np.uint64), theirs.view(np.uint64))
