@@ -60,6 +60,42 @@ PAIRS = (
     "worlds/aisle.lasertest.yaml::lds01_to_rplidar_a1",
 )
 
+# The pairs whose items take more than a minute together, in groups of their items, each
+# group a test of its own so that xdist spreads them and no test runs past a minute. The groups
+# of a pair hold each of its items once (checked below).
+GROUPS = {
+    "husky.lasertest.yaml::lms111_to_tim571_raised": (
+        ("avoid-1",),
+        ("candidate-misses-2", "baseline-misses-1", "baseline-misses-2"),
+        ("avoid-2", "coverage", "no-obstacle"),
+        ("avoid-0", "baseline-misses-0"),
+        ("candidate-misses-0", "candidate-misses-1"),
+    ),
+    "paper.lasertest.yaml::size": (
+        ("coverage", "no-obstacle", "avoid-0", "avoid-1", "avoid-2"),
+        ("candidate-misses-0", "candidate-misses-1", "candidate-misses-2"),
+        ("baseline-misses-0", "baseline-misses-1", "baseline-misses-2"),
+    ),
+    **dict.fromkeys(
+        (
+            "nav2/cropped_range.lasertest.yaml::cropped_range",
+            "nav2/a200.lasertest.yaml::ust10lx_to_rplidar_a1",
+        ),
+        (("candidate-misses-0",), ("coverage", "no-obstacle", "avoid-0", "baseline-misses-0")),
+    ),
+    "worlds/aisle.lasertest.yaml::lds01_to_rplidar_a1": (
+        ("avoid-0",),
+        ("coverage", "no-obstacle", "baseline-misses-0", "candidate-misses-0"),
+    ),
+    "turning.lasertest.yaml::blind_spot_turning": (
+        ("avoid-0", "avoid-1", "avoid-2"),
+        (
+            "coverage",
+            "no-obstacle",
+            *(f"{kind}-misses-{i}" for kind in ("candidate", "baseline") for i in range(3)),
+        ),
+    ),
+}
 # Regressions under every seed 0-7 (the candidate fails where the baseline passes, under the
 # run's scan noise and two further draws), which docs/examples.md claims, and why.
 REGRESSIONS = {
@@ -187,51 +223,42 @@ MOVE_BASE = (
     "drivers/reversed_beams.",
     "filters/speckle_window",
 )
-# Lines each pair's report must show (fnmatch patterns, each list in order).
+# Lines the report of each item must show (fnmatch patterns, each list in order).
 FILTERS_LINE = "  filters    passes without *'s chain*: the chain alone *"
-REPORTS: dict[str, list[list[str]]] = {
-    "paper.lasertest.yaml::distance": [
-        [
-            "*_ examples/paper.lasertest.yaml::distance[[]no-obstacle[]] _*",
-            "  baseline   clearpath_lms1xx_gazebo: passed: *; goal reached at t = * s",
-            "  candidate  clearpath_lms1xx_gazebo: FAILED: *; stuck at t = * s: *",
-        ]
+REPORTS: dict[str, list[str]] = {
+    "paper.lasertest.yaml::distance[no-obstacle]": [
+        "*_ examples/paper.lasertest.yaml::distance[[]no-obstacle[]] _*",
+        "  baseline   clearpath_lms1xx_gazebo: passed: *; goal reached at t = * s",
+        "  candidate  clearpath_lms1xx_gazebo: FAILED: *; stuck at t = * s: *",
     ],
-    "paper.lasertest.yaml::size": [
-        [
-            "*_ examples/paper.lasertest.yaml::size[[]candidate-misses-1[]] _*",
-            "the candidate fails (collision and goal) near witness candidate-misses-1: "
-            "pre-existing: *",
-            "  controller move_base (from examples/paper.lasertest.yaml:22)",
-            "  oracle     collision: collided at t = * s *",
-            "  witness    cylinder of radius 0.025 m at *",
-            "  minimal    cylinder of radius 0.025 m at *",
-            "  baseline   clearpath_lms1xx_gazebo: FAILED: no collision, *; stuck at t = * s: *",
-            "  candidate  clearpath_lms1xx_gazebo: FAILED: collided at t = * s; *",
-        ]
+    "paper.lasertest.yaml::size[candidate-misses-1]": [
+        "*_ examples/paper.lasertest.yaml::size[[]candidate-misses-1[]] _*",
+        "the candidate fails (collision and goal) near witness candidate-misses-1: pre-existing: *",
+        "  controller move_base (from examples/paper.lasertest.yaml:22)",
+        "  oracle     collision: collided at t = * s *",
+        "  witness    cylinder of radius 0.025 m at *",
+        "  minimal    cylinder of radius 0.025 m at *",
+        "  baseline   clearpath_lms1xx_gazebo: FAILED: no collision, *; stuck at t = * s: *",
+        "  candidate  clearpath_lms1xx_gazebo: FAILED: collided at t = * s; *",
     ],
-    "nav2/a200.lasertest.yaml::ust10lx_to_rplidar_a1": [
-        [
-            # A pre-existing failure's whole report, under -rA.
-            "*_ examples/nav2/a200.lasertest.yaml::ust10lx_to_rplidar_a1[[]candidate-misses-0[]] *",
-            "*: pre-existing: the baseline fails here too",
-            "  pair       ust10lx_to_rplidar_a1 (examples/nav2/a200.lasertest.yaml:18)",
-            "  controller nav2 (from examples/nav2/a200.lasertest.yaml:5): "
-            "Nav2 jazzy: NavFn, DWB, collision monitor 0.3 s",
-            "  oracle     collision: collided at t = * s *",
-            "  baseline   hokuyo_ust_10lx: FAILED: *; stuck at t = * s: *",
-            "             stack did: *ClearLocalCostmap-Context at t = *ClearingActions at t = *"
-            "the collision monitor stopped the robot * times from t = *",
-            "  candidate  rplidar_a1: FAILED: collided at t = * s; *",
-        ]
+    "nav2/a200.lasertest.yaml::ust10lx_to_rplidar_a1[candidate-misses-0]": [
+        # A pre-existing failure's whole report, under -rA.
+        "*_ examples/nav2/a200.lasertest.yaml::ust10lx_to_rplidar_a1[[]candidate-misses-0[]] *",
+        "*: pre-existing: the baseline fails here too",
+        "  pair       ust10lx_to_rplidar_a1 (examples/nav2/a200.lasertest.yaml:18)",
+        "  controller nav2 (from examples/nav2/a200.lasertest.yaml:5): "
+        "Nav2 jazzy: NavFn, DWB, collision monitor 0.3 s",
+        "  oracle     collision: collided at t = * s *",
+        "  baseline   hokuyo_ust_10lx: FAILED: *; stuck at t = * s: *",
+        "             stack did: *ClearLocalCostmap-Context at t = *ClearingActions at t = *"
+        "the collision monitor stopped the robot * times from t = *",
+        "  candidate  rplidar_a1: FAILED: collided at t = * s; *",
     ],
     **{
-        f"drivers/{file}.lasertest.yaml::{pair}": [
-            [
-                f"*::{pair}[[]{item}[]] _*",
-                "*: a regression: the baseline passes where *",
-                f"  driver     passes with the baseline's {trait} (*): the failure *",
-            ]
+        f"drivers/{file}.lasertest.yaml::{pair}[{item}]": [
+            f"*::{pair}[[]{item}[]] _*",
+            "*: a regression: the baseline passes where *",
+            f"  driver     passes with the baseline's {trait} (*): the failure *",
         ]
         for file, pair, item, trait in (
             ("late_stamp", "late_stamp", "avoid-0", "latency"),
@@ -241,7 +268,7 @@ REPORTS: dict[str, list[list[str]]] = {
         )
     },
     **{
-        f"filters/{pair}": [[f"*::{pair.split('::')[1]}[[]{item}[]] _*", FILTERS_LINE]]
+        f"filters/{pair}[{item}]": [f"*::{pair.split('::')[1]}[[]{item}[]] _*", FILTERS_LINE]
         for pair, item in (
             ("front_crop.lasertest.yaml::urg04lx_to_lds01_pinned", "pinned-0"),
             ("speckle_window.lasertest.yaml::ust10lx_to_rplidar_a1", "avoid-0"),
@@ -305,34 +332,45 @@ def stack(pair: str) -> str:
     return "move_base" if pair.startswith(MOVE_BASE) else "nav2"
 
 
-def run_pair(pytester: pytest.Pytester, pair: str) -> pytest.RunResult:
-    """One pair of the examples, as CI runs the main job (the ci profile), at seed 1."""
+def runs() -> list[tuple[str, tuple[str, ...]]]:
+    """Each test's pair and the items of it that the test runs (none named: all of them)."""
+    return [(pair, group) for pair in PAIRS for group in GROUPS.get(pair, ((),))]
+
+
+def run_items(pytester: pytest.Pytester, pair: str, items: tuple[str, ...]) -> pytest.RunResult:
+    """`items` of a pair of the examples (all of them if none is named), as CI runs the main job
+    (the ci profile), at seed 1."""
     shutil.copytree(EXAMPLES, pytester.path / "examples")
+    selected = [f"examples/{pair}[{item}]" for item in items] or [f"examples/{pair}"]
     return pytester.runpytest_subprocess(
-        f"examples/{pair}", "-rA", "--laser-seed=1", "--laser-profile=ci", "-n", "0",
-        "--junitxml=out.xml",
+        *selected, "-rA", "--laser-seed=1", "--laser-profile=ci", "-n", "0", "--junitxml=out.xml",
     )  # fmt: skip
 
 
-@pytest.mark.parametrize("pair", PAIRS)
+@pytest.mark.parametrize(
+    ("pair", "items"), runs(), ids=[":".join((pair, *items)) for pair, items in runs()]
+)
 def test_each_example_pair_fails_the_run_on_its_claimed_regressions_alone(
-    pytester: pytest.Pytester, pair: str
+    pytester: pytest.Pytester, pair: str, items: tuple[str, ...]
 ) -> None:
-    result = run_pair(pytester, pair)
+    result = run_items(pytester, pair, items)
     cases = {item_id(junit): case for junit, case in junit_cases(pytester.path / "out.xml").items()}
     got = {item: letter(case) for item, case in cases.items()}
     assert {item.partition("[")[0] for item in got} == {pair}
+    if items:
+        assert set(got) == {f"{pair}[{item}]" for item in items}
+    else:
+        assert {item for item in REGRESSIONS if item.startswith(f"{pair}[")} <= set(got)
     wrong = {item: (got[item], allowed(item)) for item in got if got[item] not in allowed(item)}
     assert not wrong, f"outcome, allowed: {wrong}"
-    assert {item for item in REGRESSIONS if item.startswith(f"{pair}[")} <= set(got)
     failing = "F" in got.values()
     assert result.ret == (pytest.ExitCode.TESTS_FAILED if failing else pytest.ExitCode.OK)
     assert "errors" not in outcomes(result)
     assert set(controllers(pytester).values()) == {stack(pair)}
-    for lines in REPORTS.get(pair, []):
-        result.stdout.fnmatch_lines(lines)
+    for item in sorted(set(REPORTS) & set(got)):
+        result.stdout.fnmatch_lines(REPORTS[item])
     output = result.stdout.str()
-    for loss in LOSSES.get(pair, []):
+    for loss in LOSSES.get(pair, []) if f"{pair}[coverage]" in got else []:
         section = output.split(f"::{pair.split('::')[1]}[coverage] ")[1]
         assert loss in section.split("  other changes:")[0].split("  replay")[0]
 
@@ -366,6 +404,12 @@ def test_the_pairs_checked_are_the_pairs_the_main_job_collects_and_the_docs_coun
     result = pytester.runpytest_subprocess("examples", "--collect-only", "-q")
     items = [line for line in result.stdout.lines if re.fullmatch(r"examples/\S+\[\S+\]", line)]
     assert {item.removeprefix("examples/").partition("[")[0] for item in items} == set(PAIRS)
+    # The groups of a pair run each of its items once.
+    for pair, groups in GROUPS.items():
+        grouped = [f"examples/{pair}[{item}]" for group in groups for item in group]
+        assert sorted(grouped) == sorted(
+            item for item in items if item.startswith(f"examples/{pair}[")
+        )
     for page in ("README.md", "docs/examples.md"):
         counts = re.findall(r"collects (\d+) items", (REPO / page).read_text())
         assert counts == [str(len(items))], page
