@@ -289,11 +289,20 @@ def main() -> None:
     parser.add_argument(
         "--cells", nargs="+", default=None, help="MUTANT:PAIR cells only, instead of every one"
     )
-    parser.add_argument(
+    alone = parser.add_mutually_exclusive_group()
+    alone.add_argument(
         "--without-world", action="store_true", help="leave random world placement out (faster)"
+    )
+    alone.add_argument(
+        "--random",
+        choices=METHODS[1:],
+        default=None,
+        help="this random method alone beside the gate (the gate sets its budget)",
     )
     args = parser.parse_args()
     methods = METHODS[:2] if args.without_world else METHODS
+    if args.random:
+        methods = ("gate", args.random)
     pairs = args.pairs or [pair.name for pair in load_pairs_file(PAIRS).pairs]
     chosen = [tuple(cell.split(":")) for cell in args.cells or ()]
     if chosen:

@@ -37,6 +37,16 @@ from tests.helpers.git import commit_everything  # noqa: E402
 from tests.helpers.texts import PAIRS, ROBOT, VALID_PAIRS  # noqa: E402
 
 
+def pytest_xdist_make_scheduler(config: pytest.Config, log: object) -> object | None:
+    """Under `--dist loadgroup` (the README's test command), each documentation page's commands
+    on one worker (tests/helpers/scheduling.py says why pytest-xdist alone no longer does)."""
+    if config.getvalue("dist") != "loadgroup":
+        return None
+    from tests.helpers.scheduling import PageGroups
+
+    return PageGroups(config, log)
+
+
 @pytest.fixture(autouse=True)
 def off_ci(monkeypatch: pytest.MonkeyPatch) -> None:
     """The suite runs as on a developer's machine wherever it runs: CI (which `.ci/run` sets)

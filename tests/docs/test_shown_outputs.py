@@ -3,9 +3,10 @@
 Sybil reads the Markdown (`shown.py` says which blocks it takes and how it compares them). Each
 document's commands run in order, once each, in a scratch directory of its own, on one xdist
 worker: the README's test command distributes with `--dist loadgroup`, and each document is one
-group, so that the tutorial's replay finds the artifacts its run wrote. A test run alone (`-k`),
-or on a worker that has not run its page so far, first runs the commands its page shows before
-it: pytest-xdist 3.8 under pytest 9.2 spreads a group over workers (pytest-xdist#1386).
+group, so that the tutorial's replay finds the artifacts its run wrote (pytest-xdist 3.8 under
+pytest 9.2 would spread a group over the workers, pytest-xdist#1386, so tests/conftest.py
+schedules the pages itself). A test run alone (`-k`) first runs the commands its page shows
+before it.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from tests.docs.shown import (
     unchecked_text_blocks,
 )
 from tests.helpers import REPO
+from tests.helpers.scheduling import SHOWN_OUTPUTS, page_of
 
 
 def _params() -> list[object]:
@@ -55,3 +57,18 @@ def test_every_output_block_of_the_docs_is_checked() -> None:
         for line in unchecked_text_blocks(path)
     ]
     assert unchecked == []
+
+
+def test_each_page_is_one_group_of_the_readme_s_loadgroup_schedule() -> None:
+    tests = [
+        f"{SHOWN_OUTPUTS}{page}:{line}]"
+        for page in ("README.md", "docs/tutorial.md")
+        for line in (3, 40)
+    ]
+    assert [page_of(nodeid) for nodeid in tests] == ["README.md"] * 2 + ["docs/tutorial.md"] * 2
+    # Every other test is scheduled as pytest-xdist schedules it.
+    assert (
+        page_of("tests/docs/test_shown_outputs.py::test_every_output_block_of_the_docs_is_checked")
+        is None
+    )
+    assert page_of("tests/test_suite.py::test_x[README.md:3]") is None

@@ -94,16 +94,20 @@ FAULT_LINE = re.compile(
 )
 
 
-def test_the_fault_finding_benchmark_runs_and_never_kills_the_equivalent_mutant() -> None:
+@pytest.mark.parametrize("method", ["random corridor", "random world"])
+def test_the_fault_finding_benchmark_runs_and_never_kills_the_equivalent_mutant(
+    method: str,
+) -> None:
     lines = printed(
         "benchmarks/fault_finding.py",
         *("--seeds", "1", "--jobs", "1", "--mutants", "nan_guard", "--pairs", "slower"),
+        *("--random", method),
     )
     assert FAULT_LINE.fullmatch(lines[-1])
     # The equivalent mutant alone: nothing to kill, and no method kills it.
     assert lines[-1].startswith("mutants killed: gate 0 of 0, random 0 of 0")
     rows = [line.split() for line in lines if line.startswith("nan_guard")]
-    assert [row[1] for row in rows] == ["gate", "random", "random"]
+    assert [" ".join(row[1:-3]) for row in rows] == ["gate", method]
     assert all(row[-1] == "-" and row[-3].startswith("0/1") for row in rows)
 
 
