@@ -1,14 +1,14 @@
 """The bundled examples find what docs/examples.md says they find, under any seed.
 
-Each pair runs alone (one test a pair, so that xdist spreads them), as CI runs the main job: the
-ci profile, here with seed 1. Every item is checked. A claimed regression failed the run under
-every seed 0-7 (`python benchmarks/verdicts.py <file> --seeds 0-7`), so it must fail here; an
-item whose outcome changed with the seed must have one of the outcomes the sweep saw; every
-other item must have its noted outcome at seed 1, or pass or skip. The run's exit status comes
-from regressions alone. The paper's downgrades fail on the attribute each one changed; under
-Nav2 the A200 example's reports name the stack, the oracle and what the stack did; the driver
-and filter faults name what alone explains them; the team's gap follower takes its robots to the
-goal."""
+Each pair runs alone (one test a pair, or a group of its items where the pair takes more than a
+minute, so that xdist spreads them), as CI runs the main job: the ci profile, here with seed 1.
+Every item is checked. A claimed regression failed the run under every seed 0-7 (`python
+benchmarks/verdicts.py <file> --seeds 0-7`), so it must fail here; an item whose outcome changed
+with the seed must have one of the outcomes the sweep saw; every other item must have its noted
+outcome at seed 1, or pass or skip. The run's exit status comes from regressions alone. The
+paper's downgrades fail on the attribute each one changed; under Nav2 the A200 example's reports
+name the stack, the oracle and what the stack did; the driver and filter faults name what alone
+explains them; the team's gap follower takes its robots to the goal."""
 
 from __future__ import annotations
 
