@@ -332,9 +332,8 @@ def stack(pair: str) -> str:
     return "move_base" if pair.startswith(MOVE_BASE) else "nav2"
 
 
-def runs() -> list[tuple[str, tuple[str, ...]]]:
-    """Each test's pair and the items of it that the test runs (none named: all of them)."""
-    return [(pair, group) for pair in PAIRS for group in GROUPS.get(pair, ((),))]
+# Each test's pair and the items of it that the test runs (none named: all of them).
+RUNS = [(pair, group) for pair in PAIRS for group in GROUPS.get(pair, ((),))]
 
 
 def run_items(pytester: pytest.Pytester, pair: str, items: tuple[str, ...]) -> pytest.RunResult:
@@ -348,7 +347,7 @@ def run_items(pytester: pytest.Pytester, pair: str, items: tuple[str, ...]) -> p
 
 
 @pytest.mark.parametrize(
-    ("pair", "items"), runs(), ids=[":".join((pair, *items)) for pair, items in runs()]
+    ("pair", "items"), RUNS, ids=[":".join((pair, *items)) for pair, items in RUNS]
 )
 def test_each_example_pair_fails_the_run_on_its_claimed_regressions_alone(
     pytester: pytest.Pytester, pair: str, items: tuple[str, ...]

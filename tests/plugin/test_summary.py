@@ -39,14 +39,14 @@ OUTCOMES = {
 # marginal, pre-existing. Together the pair searched 8 witnesses and 127 examples.
 ROWS = {
     ("coverage", "no-obstacle", "avoid-0", "avoid-1", "avoid-2"): (
-        *("2", "35", "0", "(0%)", "1", "0", "1", "1", "1", "0", "0"),
+        ("2", "35", "0", "(0%)", "1", "0", "1", "1", "1", "0", "0")
     ),
     ("candidate-misses-2",): ("1", "12", "0", "(0%)", "1", "1", "0", "1", "1", "1", "0"),
     ("candidate-misses-0", "candidate-misses-1"): (
-        *("2", "32", "0", "(0%)", "0", "0", "0", "0", "0", "0", "1"),
+        ("2", "32", "0", "(0%)", "0", "0", "0", "0", "0", "0", "1")
     ),
     tuple(f"baseline-misses-{index}" for index in range(3)): (
-        *("3", "48", "0", "(0%)", "0", "0", "0", "0", "0", "0", "1"),
+        ("3", "48", "0", "(0%)", "0", "0", "0", "0", "0", "0", "1")
     ),
 }
 
@@ -55,19 +55,20 @@ ROWS = {
 def test_items_run_and_sum_up_the_same_under_xdist_as_serially(
     pytester: pytest.Pytester, paper: Path, items: tuple[str, ...]
 ) -> None:
-    selection = (*(f"{paper.name}::size[{item}]" for item in items), "--laser-seed=1")
-    selection += ("--laser-profile=ci",)
+    nodes = [f"{paper.name}::size[{item}]" for item in items]
+    selection = (*nodes, "--laser-seed=1", "--laser-profile=ci")
     serial = pytester.runpytest(*selection, "--junitxml=serial.xml")
     # Each run starts from an empty example database, or the second would replay the first's
     # failures and try fewer examples.
     shutil.rmtree(pytester.path / ".hypothesis", ignore_errors=True)
     distributed = pytester.runpytest_subprocess(*selection, "--junitxml=xdist.xml", "-n", "2")
-    assert junit_cases(pytester.path / "serial.xml") == junit_cases(pytester.path / "xdist.xml")
+    cases = junit_cases(pytester.path / "serial.xml")
+    assert cases == junit_cases(pytester.path / "xdist.xml")
     assert summary(serial.stdout.lines) == summary(distributed.stdout.lines)
     assert summary(serial.stdout.lines)[1].split() == [f"{paper.name}::size", *ROWS[items]]
-    assert {
-        name: case.outcome for name, case in junit_cases(pytester.path / "serial.xml").items()
-    } == {f"{paper.name}::size[{item}]": OUTCOMES[item] for item in items}
+    assert {name: case.outcome for name, case in cases.items()} == {
+        f"{paper.name}::size[{item}]": OUTCOMES[item] for item in items
+    }
 
 
 def test_the_runs_above_hold_each_item_of_the_pair_once() -> None:
