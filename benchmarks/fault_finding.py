@@ -38,7 +38,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from mutants import MUTANTS, faulty
+from mutants import MUTANTS
+from mutation import bare
 
 from pytest_lasertest.model.geometry import FloatArray
 from pytest_lasertest.model.obstacles import Box, Cylinder, Obstacle
@@ -108,18 +109,18 @@ class Bench:
 
 
 class Search:
-    """One method's search in one cell: the pair, move_base with the fault and without it, and
-    the runs it simulates."""
+    """One method's search in one cell: the pair, the mutant's stack with the fault and without
+    it, and the runs it simulates."""
 
     def __init__(self, bench: Bench, cell: Cell, method: str) -> None:
         self.bench, self.cell, self.method = bench, cell, method
         self.pair = next(pair for pair in bench.spec.pairs if pair.name == cell.pair)
         mutant = next(mutant for mutant in MUTANTS if mutant.name == cell.mutant)
-        baseline = self.pair.baseline.profile
+        baseline, stack = self.pair.baseline.profile, mutant.stack
         self.fault = ControllerChoice(
-            f"move_base+{mutant.name}", "mutants.py", faulty(mutant, baseline)
+            f"{stack}+{mutant.name}", "mutants.py", mutant.factory(baseline)
         )
-        self.clean = ControllerChoice("move_base", "mutants.py", faulty(None, baseline))
+        self.clean = ControllerChoice(stack, "mutants.py", bare(stack))
         self.cache = Counter()
 
     def drive(
@@ -289,20 +290,11 @@ def main() -> None:
     parser.add_argument(
         "--cells", nargs="+", default=None, help="MUTANT:PAIR cells only, instead of every one"
     )
-    alone = parser.add_mutually_exclusive_group()
-    alone.add_argument(
+    parser.add_argument(
         "--without-world", action="store_true", help="leave random world placement out (faster)"
-    )
-    alone.add_argument(
-        "--random",
-        choices=METHODS[1:],
-        default=None,
-        help="this random method alone beside the gate (the gate sets its budget)",
     )
     args = parser.parse_args()
     methods = METHODS[:2] if args.without_world else METHODS
-    if args.random:
-        methods = ("gate", args.random)
     pairs = args.pairs or [pair.name for pair in load_pairs_file(PAIRS).pairs]
     chosen = [tuple(cell.split(":")) for cell in args.cells or ()]
     if chosen:

@@ -1,21 +1,20 @@
-"""Faults in the software that reads the scanner, for the mutation analysis of fault_finding.py.
+"""The faults of the mutation analysis (fault_finding.py): `MUTANTS`, those put into move_base
+(here) and those put into Nav2 (nav2_faults.py). mutation.py says how a fault goes in.
 
 Each fault is a bug class that real ROS systems have had where the scan enters the navigation
 stack, written as a team would have it: a filter or a setting tuned for the scanner the robot had
-(the baseline), which does no harm with it and can do harm with the new one. A fault is put into
-the default controller, move_base, through the public controller interface: `faulty(mutant,
-baseline)` makes a controller factory that changes each scan (or the command) on its way in, as
-the team's filter node or misconfigured costmap would (`protocol.InFront`, which keeps
-move_base's optional attributes), and builds move_base with the mutant's
-navigation parameters where the fault is a setting (a costmap's update rate, the planner's
+(the baseline), which does no harm with it and can do harm with the new one. It changes each scan
+(or the command) on its way in, as the team's filter node or misconfigured costmap would, or sets
+the stack's parameters where the fault is a setting (a costmap's update rate, the planner's
 unknown space). Each names the source it imitates; the code is ours.
 
 A costmap fault is written as what the misconfigured costmap does with the scan, where a scan
 can say it exactly (an observation source that drops every point of a raised scanner is a scan
 of no readings), else as the parameter itself.
 
-`nan_guard` is the equivalent mutant: it replaces NaN readings by +inf (REP 117's "no return"),
-and the simulated scanner publishes no NaN, so it must never be killed.
+`nan_guard` is move_base's equivalent mutant: it replaces NaN readings by +inf (REP 117's "no
+return"), and the simulated scanner publishes no NaN, so it must never be killed. Nav2's are in
+nav2_faults.py.
 """
 
 from __future__ import annotations
@@ -23,75 +22,15 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections import deque
-from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
+from mutation import Command, Fault, Mutant, with_ranges
+from nav2_faults import NAV2_MUTANTS
 
-from pytest_lasertest.model.geometry import FloatArray, Point2D, Pose3D
-from pytest_lasertest.model.robot import Robot
+from pytest_lasertest.model.geometry import FloatArray, Pose3D
 from pytest_lasertest.model.sensor import LaserProfile
-from pytest_lasertest.nav.move_base import MoveBase
 from pytest_lasertest.nav.move_base.settings import NavigationSettings
-from pytest_lasertest.nav.protocol import (
-    Controller,
-    ControllerFactory,
-    InFront,
-    LaserScan,
-    Odometry,
-)
-
-Command = tuple[float, float]  # m/s, rad/s
-# The navigation parameters the team set for the baseline scanner, from the robot's own.
-Setting = Callable[[NavigationSettings, LaserProfile], NavigationSettings]
-
-
-class Fault:
-    """What the faulty code does to a scan on its way to move_base, and to the command back.
-    One instance serves one run: a fault with memory (a median over scans) starts empty."""
-
-    def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
-        return scan
-
-    def command(self, command: Command, scan: LaserScan) -> Command:
-        return command
-
-
-@dataclass(frozen=True)
-class Mutant:
-    """A fault class, where it comes from, and how to make it for a baseline scanner."""
-
-    name: str
-    bug: str  # what the code does wrong
-    source: str  # the real case or the real code it imitates
-    make: Callable[[LaserProfile], Fault]  # the fault, tuned for the baseline scanner
-    equivalent: bool = False  # changes nothing the simulator can publish
-    navigation: Setting | None = None  # move_base's parameters as the fault has them
-
-
-def faulty(mutant: Mutant | None, baseline: LaserProfile) -> ControllerFactory:
-    """move_base, with the mutant's fault tuned for `baseline` if one is given."""
-
-    def make(robot: Robot, route: tuple[Point2D, ...]) -> Controller:
-        if mutant is None:
-            return MoveBase(robot, route)
-        settings = NavigationSettings.from_parameters(robot.navigation)
-        if mutant.navigation is not None:
-            settings = mutant.navigation(settings, baseline)
-        fault = mutant.make(baseline)
-        # In front of move_base as a filter node is, its optional attributes kept
-        # (goal_tolerance, stuck_window, receive_map, ...): a fault changes scans, nothing else.
-        return InFront(
-            MoveBase(robot, route, settings),
-            lambda scan, odometry, time: fault.scan(scan, odometry),
-            fault.command,
-        )
-
-    return make
-
-
-def _with_ranges(scan: LaserScan, ranges: FloatArray, **meta: float) -> LaserScan:
-    return LaserScan(scan.stamp, ranges, dataclasses.replace(scan.meta, **meta), scan.mount)
+from pytest_lasertest.nav.protocol import LaserScan, Odometry
 
 
 def _planar(x: float, y: float, yaw: float) -> Pose3D:
@@ -120,8 +59,8 @@ class Speckle(Fault):
         agree = ~np.isnan(windows).any(axis=1) & ~apart.any(axis=1)
         valid = ranges > self.max_range  # beyond max_range: left alone
         for offset in range(self.window):
-            valid[offset : offset + len(agree)] |= agree
-        return _with_ranges(scan, np.where(valid, ranges, np.nan))
+            valid[offset : offset + len(windows)] |= agree
+        return with_ranges(scan, np.where(valid, ranges, np.nan))
 
 
 class Stride(Fault):
@@ -136,7 +75,7 @@ class Stride(Fault):
         ranges = scan.ranges[:: self.step]
         increment = scan.meta.angle_increment * self.step
         last = scan.meta.angle_min + (len(ranges) - 1) * increment
-        return _with_ranges(scan, ranges, angle_increment=increment, angle_max=last)
+        return with_ranges(scan, ranges, angle_increment=increment, angle_max=last)
 
 
 class TemporalMedian(Fault):
@@ -151,7 +90,7 @@ class TemporalMedian(Fault):
     def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
         self.history.append(scan.ranges)
         ordered = np.sort(np.stack(self.history), axis=0)
-        return _with_ranges(scan, ordered[len(self.history) // 2])
+        return with_ranges(scan, ordered[len(self.history) // 2])
 
 
 class NearAsFar(Fault):
@@ -164,7 +103,7 @@ class NearAsFar(Fault):
         self.threshold = baseline.range_min
 
     def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
-        return _with_ranges(scan, np.where(scan.ranges <= self.threshold, np.inf, scan.ranges))
+        return with_ranges(scan, np.where(scan.ranges <= self.threshold, np.inf, scan.ranges))
 
 
 class AngleTable(Fault):
@@ -179,7 +118,7 @@ class AngleTable(Fault):
 
     def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
         last = self.angle_min + (len(scan.ranges) - 1) * self.increment
-        return _with_ranges(
+        return with_ranges(
             scan,
             scan.ranges,
             angle_min=self.angle_min,
@@ -200,7 +139,7 @@ class IndexMask(Fault):
     def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
         ranges = scan.ranges.copy()
         ranges[self.masked[self.masked < len(ranges)]] = np.nan
-        return _with_ranges(scan, ranges)
+        return with_ranges(scan, ranges)
 
 
 class SweepSkew(Fault):
@@ -226,7 +165,7 @@ class StaleSweep(Fault):
         previous, self.previous = self.previous, scan.ranges
         if previous is None or len(previous) != len(scan.ranges):
             return scan
-        return _with_ranges(scan, previous)
+        return with_ranges(scan, previous)
 
 
 class ExpectedRate(Fault):
@@ -263,7 +202,7 @@ class NanGuard(Fault):
     """NaN readings as +inf, REP 117's no return. The simulated scanner publishes none."""
 
     def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
-        return _with_ranges(scan, np.where(np.isnan(scan.ranges), np.inf, scan.ranges))
+        return with_ranges(scan, np.where(np.isnan(scan.ranges), np.inf, scan.ranges))
 
 
 class ObstacleHeight(Fault):
@@ -284,7 +223,7 @@ class ObstacleHeight(Fault):
     def scan(self, scan: LaserScan, odometry: Odometry) -> LaserScan:
         if scan.mount.xyz[2] <= self.max_height:
             return scan
-        return _with_ranges(scan, np.full(len(scan.ranges), np.nan))
+        return with_ranges(scan, np.full(len(scan.ranges), np.nan))
 
 
 class DropScans(Fault):
@@ -310,7 +249,7 @@ class DropScans(Fault):
             self.kept = (scan, odometry)
             return scan
         if self.kept is None:
-            return _with_ranges(scan, np.full(len(scan.ranges), np.nan))
+            return with_ranges(scan, np.full(len(scan.ranges), np.nan))
         kept, then = self.kept
         # The base frame the scan was taken in, seen from the current one.
         taken = (
@@ -427,7 +366,7 @@ def _known_space_only(settings: NavigationSettings, baseline: LaserProfile) -> N
     return dataclasses.replace(settings, navfn=navfn)
 
 
-MUTANTS = (
+MOVE_BASE_MUTANTS = (
     Mutant(
         "speckle",
         "a speckle filter drops a reading no neighbouring beam confirms",
@@ -542,3 +481,5 @@ MUTANTS = (
         navigation=_known_space_only,
     ),
 )
+
+MUTANTS = (*MOVE_BASE_MUTANTS, *NAV2_MUTANTS)
