@@ -1,7 +1,8 @@
 """Does the gate find the bugs a scanner change exposes? A mutation analysis, side by side.
 
 Faults in the software that reads the scanner (mutants.py: filters and settings tuned for the old
-scanner) are put one at a time into the Husky's move_base. For each fault, each scanner change of
+scanner) are put one at a time into the Husky's navigation stack, the one each names (move_base
+or Nav2, built as the plugin builds it: mutation.py). For each fault, each scanner change of
 fault_finding_pairs.yaml (a cell) and each seed, three methods look for a placement that exposes
 it, at the same number of simulated runs:
 - the gate: what `pytest --laser-policy=regression` does with the pair, its control drive and its
@@ -290,11 +291,20 @@ def main() -> None:
     parser.add_argument(
         "--cells", nargs="+", default=None, help="MUTANT:PAIR cells only, instead of every one"
     )
-    parser.add_argument(
+    alone = parser.add_mutually_exclusive_group()
+    alone.add_argument(
         "--without-world", action="store_true", help="leave random world placement out (faster)"
+    )
+    alone.add_argument(
+        "--random",
+        choices=METHODS[1:],
+        default=None,
+        help="this random method alone beside the gate (the gate sets its budget)",
     )
     args = parser.parse_args()
     methods = METHODS[:2] if args.without_world else METHODS
+    if args.random:
+        methods = ("gate", args.random)
     pairs = args.pairs or [pair.name for pair in load_pairs_file(PAIRS).pairs]
     chosen = [tuple(cell.split(":")) for cell in args.cells or ()]
     if chosen:

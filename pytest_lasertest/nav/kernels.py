@@ -9,18 +9,27 @@ numpy's sum of a float32 row to the bit.
 
 numba compiles these when this module is imported (each for the one signature it is called
 with), outside any controller call's time, and keeps the machine code in __pycache__: the first
-import on a machine takes about 10 s, later ones a fraction of a second.
+import on a machine takes about 10 s, later ones a fraction of a second. The first compiles in a
+child process (`_compile_apart`): LLVM keeps some 100 MB of what it compiled for as long as the
+process lives, and a run that only loads the cached machine code does without it.
 """
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any, TypeVar, cast
 
 import numba
 import numpy as np
 
 Function = TypeVar("Function", bound=Callable[..., Any])
+# Set in the child that compiles a kernels module, so that it compiles rather than spawn one.
+COMPILING = "PYTEST_LASERTEST_COMPILING"
+_compiled_apart: set[str] = set()  # the kernels modules this process had a child compile
 
 
 def compiled(signature: str | None = None) -> Callable[[Function], Function]:
@@ -30,9 +39,37 @@ def compiled(signature: str | None = None) -> Callable[[Function], Function]:
     def compile_for(function: Function) -> Function:
         if signature is None:
             return cast(Function, numba.njit(function, cache=True, nogil=True))
+        if not _cached(function):
+            _compile_apart(function.__module__)
         return cast(Function, numba.njit(signature, cache=True, nogil=True)(function))
 
     return compile_for
+
+
+def _cached(function: Callable[..., Any]) -> bool:
+    """Whether numba's index of `function`'s machine code lies in its module's __pycache__,
+    written since the module was (numba's own check, of the source's stamp, follows). Where
+    __pycache__ cannot be written numba caches elsewhere, and this says no."""
+    source = Path(function.__code__.co_filename)
+    version = f"py{sys.version_info.major}{sys.version_info.minor}"
+    name = f"{source.stem}.{function.__qualname__}-{function.__code__.co_firstlineno}"
+    index = source.parent / "__pycache__" / f"{name}.{version}.nbi"
+    try:
+        return index.stat().st_mtime >= source.stat().st_mtime
+    except OSError:
+        return False
+
+
+def _compile_apart(module: str) -> None:
+    """Have a child process import `module`, compiling its kernels into numba's cache, once per
+    module and process: this process then loads their machine code without keeping LLVM's
+    memory of compiling it. Should the child fail, this process compiles, and says why."""
+    if os.environ.get(COMPILING) or module in _compiled_apart:
+        return
+    _compiled_apart.add(module)
+    environment = {**os.environ, COMPILING: "1"}
+    command = [sys.executable, "-c", f"import {module}"]
+    subprocess.run(command, env=environment, check=False, capture_output=True)
 
 
 # numba's types: f8 is a float64, i8 an int64, u1 a byte, [::1] a C-contiguous axis.
