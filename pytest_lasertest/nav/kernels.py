@@ -10,8 +10,9 @@ numpy's sum of a float32 row to the bit.
 numba compiles these when this module is imported (each for the one signature it is called
 with), outside any controller call's time, and keeps the machine code in __pycache__: the first
 import on a machine takes about 10 s, later ones a fraction of a second. The first compiles in a
-child process (`_compile_apart`): LLVM keeps some 100 MB of what it compiled for as long as the
-process lives, and a run that only loads the cached machine code does without it.
+child process (`_compile_apart`): LLVM keeps about 110 MB of what it compiled the stacks' kernels
+with for as long as the process lives, and a process that only loads the cached machine code does
+without it (docs/explanation/performance.md).
 """
 
 from __future__ import annotations
@@ -63,11 +64,14 @@ def _cached(function: Callable[..., Any]) -> bool:
 def _compile_apart(module: str) -> None:
     """Have a child process import `module`, compiling its kernels into numba's cache, once per
     module and process: this process then loads their machine code without keeping LLVM's
-    memory of compiling it. Should the child fail, this process compiles, and says why."""
+    memory of compiling it. Should the child fail, this process compiles them itself, and a
+    kernel that does not compile raises here."""
     if os.environ.get(COMPILING) or module in _compiled_apart:
         return
     _compiled_apart.add(module)
-    environment = {**os.environ, COMPILING: "1"}
+    # The child finds the module where this process found it, not another copy.
+    path = os.pathsep.join(sys.path)
+    environment = {**os.environ, COMPILING: "1", "PYTHONPATH": path}
     command = [sys.executable, "-c", f"import {module}"]
     subprocess.run(command, env=environment, check=False, capture_output=True)
 

@@ -27,13 +27,17 @@ print(sum(twice.stats.cache_hits.values()), sum(twice.stats.cache_misses.values(
 """
 
 
-def imported(folder: Path, **environment: str) -> list[str]:
-    """What a fresh process importing the kernel in `folder` reports."""
-    paths = os.pathsep.join([str(folder), *sys.path])
+def imported(
+    folder: Path, *, on_sys_path: bool = False, environment: dict[str, str] | None = None
+) -> list[str]:
+    """What a fresh process importing the kernel in `folder` reports; it finds `folder` on its
+    PYTHONPATH, or, `on_sys_path`, by putting it on sys.path itself (as pytest's rootdir is)."""
+    paths = os.pathsep.join(sys.path if on_sys_path else [str(folder), *sys.path])
+    report = f"import sys; sys.path.insert(0, {str(folder)!r})\n{REPORT}" if on_sys_path else REPORT
     env = {key: value for key, value in os.environ.items() if key != COMPILING}
     done = subprocess.run(
-        [sys.executable, "-c", REPORT],
-        env={**env, "PYTHONPATH": paths, **environment},
+        [sys.executable, "-c", report],
+        env={**env, "PYTHONPATH": paths, **(environment or {})},
         capture_output=True,
         text=True,
         check=True,
@@ -52,7 +56,7 @@ def test_a_kernel_not_yet_cached_is_compiled_apart_and_loaded_from_the_cache(
 
 def test_a_process_that_may_not_compile_apart_compiles_the_kernel_itself(tmp_path: Path) -> None:
     (tmp_path / "kernel_under_test.py").write_text(KERNEL)
-    assert imported(tmp_path, **{COMPILING: "1"}) == ["0", "1", "4.0"]
+    assert imported(tmp_path, environment={COMPILING: "1"}) == ["0", "1", "4.0"]
 
 
 def test_a_kernel_whose_source_changed_since_it_was_cached_is_compiled_apart_again(
@@ -65,3 +69,8 @@ def test_a_kernel_whose_source_changed_since_it_was_cached_is_compiled_apart_aga
     later = max(index.stat().st_mtime for index in (tmp_path / "__pycache__").glob("*.nbi")) + 1
     os.utime(source, (later, later))
     assert imported(tmp_path) == ["1", "0", "4.0"]
+
+
+def test_the_child_finds_a_kernels_module_where_the_process_found_it(tmp_path: Path) -> None:
+    (tmp_path / "kernel_under_test.py").write_text(KERNEL)
+    assert imported(tmp_path, on_sys_path=True) == ["1", "0", "4.0"]
