@@ -31,6 +31,13 @@ Function = TypeVar("Function", bound=Callable[..., Any])
 # Set in the child that compiles a kernels module, so that it compiles rather than spawn one.
 COMPILING = "PYTEST_LASERTEST_COMPILING"
 _compiled_apart: set[str] = set()  # the kernels modules this process had a child compile
+# The stacks' kernels modules: the first of them found not cached has one child compile them
+# all, which costs one process start where a child each cost three.
+STACK_KERNELS = (
+    "pytest_lasertest.nav.kernels",
+    "pytest_lasertest.nav.move_base.kernels",
+    "pytest_lasertest.nav.nav2.kernels",
+)
 
 
 def compiled(signature: str | None = None) -> Callable[[Function], Function]:
@@ -62,17 +69,18 @@ def _cached(function: Callable[..., Any]) -> bool:
 
 
 def _compile_apart(module: str) -> None:
-    """Have a child process import `module`, compiling its kernels into numba's cache, once per
-    module and process: this process then loads their machine code without keeping LLVM's
-    memory of compiling it. Should the child fail, this process compiles them itself, and a
-    kernel that does not compile raises here."""
+    """Have a child process import `module` (and the stacks' kernels modules with it), compiling
+    their kernels into numba's cache, once per module and process: this process then loads
+    their machine code without keeping LLVM's memory of compiling it. Should the child fail,
+    this process compiles them itself, and a kernel that does not compile raises here."""
     if os.environ.get(COMPILING) or module in _compiled_apart:
         return
-    _compiled_apart.add(module)
-    # The child finds the module where this process found it, not another copy.
+    modules = [module, *(name for name in STACK_KERNELS if name not in _compiled_apart)]
+    _compiled_apart.update(modules)
+    # The child finds the modules where this process found them, not other copies.
     path = os.pathsep.join(sys.path)
     environment = {**os.environ, COMPILING: "1", "PYTHONPATH": path}
-    command = [sys.executable, "-c", f"import {module}"]
+    command = [sys.executable, "-c", f"import {', '.join(dict.fromkeys(modules))}"]
     subprocess.run(command, env=environment, check=False, capture_output=True)
 
 
