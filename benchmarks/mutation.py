@@ -83,7 +83,7 @@ class Mutant:
             # In front of the stack as a filter node is, its optional attributes kept
             # (goal_tolerance, stuck_window, receive_map, ...): a fault changes scans only.
             return Clocked(
-                _built(self.stack, robot, route, self, baseline),
+                self._stack(robot, route, baseline),
                 lambda scan, odometry, time: fault.scan(scan, odometry),
                 fault.command,
                 fault=fault,
@@ -91,30 +91,24 @@ class Mutant:
 
         return make
 
+    def _stack(
+        self, robot: Robot, route: tuple[Point2D, ...], baseline: LaserProfile
+    ) -> Controller:
+        """The stack as the plugin builds it for `robot`, its parameters as the fault has them
+        for `baseline` (`__post_init__` holds each setting to its own stack)."""
+        if self.nav2 is not None:
+            own = configured(robot.nav2, robot.nav2_release).settings
+            return Nav2(robot, route, self.nav2(own, baseline))
+        if self.navigation is not None:
+            settings = NavigationSettings.from_parameters(robot.navigation)
+            return MoveBase(robot, route, self.navigation(settings, baseline))
+        return bare(self.stack)(robot, route)
+
 
 def bare(stack: Stack) -> ControllerFactory:
-    """The stack as the plugin builds it for the robot, without a fault."""
-    return lambda robot, route: _built(stack, robot, route)
-
-
-def _built(
-    stack: Stack,
-    robot: Robot,
-    route: tuple[Point2D, ...],
-    mutant: Mutant | None = None,
-    baseline: LaserProfile | None = None,
-) -> Controller:
-    """The stack as the plugin builds it for `robot`, its parameters as the mutant has them
-    for `baseline`."""
-    if stack == "nav2":
-        if mutant is None or mutant.nav2 is None or baseline is None:
-            return Nav2(robot, route)  # the plugin's `controller: nav2`
-        own = configured(robot.nav2, robot.nav2_release).settings
-        return Nav2(robot, route, mutant.nav2(own, baseline))
-    if mutant is None or mutant.navigation is None or baseline is None:
-        return MoveBase(robot, route)
-    settings = NavigationSettings.from_parameters(robot.navigation)
-    return MoveBase(robot, route, mutant.navigation(settings, baseline))
+    """The stack as the plugin builds it for the robot (its `controller: nav2` or the Husky's
+    move_base), without a fault."""
+    return Nav2 if stack == "nav2" else MoveBase
 
 
 @dataclass
