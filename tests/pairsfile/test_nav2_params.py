@@ -114,6 +114,7 @@ def test_a_teams_params_file_sets_the_nav2_imitation_and_nav2s_code_defaults_the
     assert not s.local.source.clearing  # obstacle_layer.cpp:153
     assert s.local.source.max_obstacle_height == 0.0  # obstacle_layer.cpp:150
     assert s.prune_distance == 1.5  # path_handler.cpp:38
+    assert not s.mppi.regenerate_noises  # noise_generator.cpp:35
     assert s.smoother.max_velocity == (0.5, 2.5)  # velocity_smoother.cpp:64-65
     assert s.collision_monitor is not None
     assert (s.collision_monitor.min_points, s.collision_monitor.time_before_collision) == (4, 2.0)

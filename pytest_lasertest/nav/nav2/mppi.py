@@ -56,6 +56,9 @@ class MppiSettings:
     temperature: float = 0.3
     gamma: float = 0.015
     retry_attempt_limit: int = 1
+    # nav2_params.yaml's; the code's default is false (noise_generator.cpp:35 at jazzy f4108e5b
+    # and humble 3c3db59d): one draw of noise serves every cycle until a reset (`noise.py`).
+    regenerate_noises: bool = True
 
 
 @dataclass(frozen=True)
@@ -203,7 +206,8 @@ class Optimizer:
         self.vx = np.zeros(settings.time_steps, dtype=np.float32)  # (T,) the control sequence
         self.wz = np.zeros(settings.time_steps, dtype=np.float32)
         self.history = np.zeros((4, 2), dtype=np.float32)  # the last four commands [vx, wz]
-        self._noise = NoiseDrawer(rng, (2, settings.time_steps, settings.batch_size))
+        shape = (2, settings.time_steps, settings.batch_size)
+        self._noise = NoiseDrawer(rng, shape, settings.regenerate_noises)
         s = settings
         self._changes = changes(s.model_dt, s.ax_max, s.ax_min, s.az_max)
 
@@ -242,19 +246,21 @@ class Optimizer:
         return True
 
     def _reset(self) -> None:
+        """Optimizer::reset: the sequence and the command history zeroed, the noise drawn
+        afresh."""
         self.vx[:], self.wz[:] = 0.0, 0.0
         self.history[:] = 0.0
+        self._noise.reset()
 
     def _samples(self, cycle: Cycle) -> CriticData:
         """Noised sequences, bounded from the robot's speed on, and their trajectories."""
         s = self.settings
         # Time-major (T, B) inside, so that each step's samples lie together; the critics
         # read (B, T) views of them.
-        noise = self._noise.next()
-        noised_vx, noised_wz = noise[0], noise[1]  # noised in place
-        noised_vx *= np.float32(s.vx_std)
+        noise = self._noise.next()  # read-only: without regenerate_noises, the next cycle's too
+        noised_vx = noise[0] * np.float32(s.vx_std)
         noised_vx += self.vx[:, np.newaxis]
-        noised_wz *= np.float32(s.wz_std)
+        noised_wz = noise[1] * np.float32(s.wz_std)
         noised_wz += self.wz[:, np.newaxis]
         vx, wz = predict(noised_vx, noised_wz, cycle.speed, self._changes)
         x, y, yaw = integrate(vx, wz, cycle.pose, s.model_dt)

@@ -212,7 +212,8 @@ def code_defaults(release: str) -> Nav2Settings:
     and sources) the params reader asks the file for it."""
     return Nav2Settings(
         release=release,
-        mppi=MppiSettings(batch_size=1000),  # optimizer.cpp:72
+        # optimizer.cpp:72, noise_generator.cpp:35
+        mppi=MppiSettings(batch_size=1000, regenerate_noises=False),
         critics=(),  # critic_manager.cpp:39: no critic unless `critics` lists it
         local=dataclasses.replace(_code_default_costmap(5.0), static_layer=None),
         # Not rolling by default (costmap_2d_ros.cpp:129): the global costmap spans the map,

@@ -3,6 +3,7 @@ seed, near the goal the goal pulls, and when every sample fails it says so."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -65,6 +66,37 @@ def test_every_sample_failing_twice_in_a_row_gives_no_command_and_starts_afresh(
     mppi.vx[:] = 0.4
     assert mppi.command((0.0, 0.0, 0.0), (0.4, 0.0), PATH, (4.95, 0.0)) is None
     assert not mppi.vx.any()
+
+
+def noise_of_cycles(settings: MppiSettings, cycles: int, fail_at: int = -1) -> list[np.ndarray]:
+    """The noise (B, T) each cycle added to the sequence's vx; cycle `fail_at` fails once."""
+    seen: list[np.ndarray] = []
+
+    def record(data: CriticData) -> None:
+        seen.append(data.cvx - mppi.vx)  # before predict bounded it: no limits bind here
+        data.fail = len(seen) == fail_at + 1
+
+    loose = dataclasses.replace(settings, ax_max=1e3, ax_min=-1e3, az_max=1e3)
+    mppi = Optimizer(loose, [record], np.random.default_rng(0))
+    for _ in range(cycles):
+        mppi.command((0.0, 0.0, 0.0), (0.0, 0.0), PATH, (4.95, 0.0))
+    return seen
+
+
+def test_without_regenerate_noises_every_cycle_reads_one_draw_until_a_failure_resets_it() -> None:
+    fixed = dataclasses.replace(SETTINGS, regenerate_noises=False, batch_size=50)
+    first, second, failed, retried, after = noise_of_cycles(fixed, 4, fail_at=2)
+    # Equal but for float32 rounding: each cycle adds the noise to a sequence of its own.
+    assert np.allclose(first, second, atol=1e-6)
+    assert np.allclose(first, failed, atol=1e-6)
+    assert not np.allclose(failed, retried, atol=0.01)  # the fallback's reset drew afresh
+    assert np.allclose(retried, after, atol=1e-6)
+    assert 0.15 < float(np.std(first)) < 0.25  # vx_std 0.2 m/s
+
+
+def test_with_regenerate_noises_every_cycle_reads_a_fresh_draw() -> None:
+    first, second = noise_of_cycles(dataclasses.replace(SETTINGS, batch_size=50), 2)
+    assert not np.allclose(first, second, atol=0.01)
 
 
 def test_near_the_goal_the_goal_critic_turns_the_robot_toward_it() -> None:
