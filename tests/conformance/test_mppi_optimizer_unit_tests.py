@@ -185,7 +185,7 @@ def test_reset_zeroes_the_sequence_and_the_command_history() -> None:
     # Garbage of the sequence's own length: ours is sized once, by time_steps.
     mppi.vx[:] = 342.0
     mppi.history[0] = (43.0, 32432.0)  # vx, wz
-    mppi._reset()  # the optimizer's reset, which a failed cycle calls
+    mppi.reset()
     assert np.array_equal(mppi.vx, np.zeros(50, dtype=np.float32))
     assert mppi.history[0, 0] == 0.0
 

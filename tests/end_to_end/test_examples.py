@@ -148,7 +148,6 @@ SEED_DEPENDENT = {
     "husky.lasertest.yaml::lms111_to_tim571_raised[candidate-misses-2]": "Fm",
     "husky.lasertest.yaml::ust10_to_ust20[avoid-2]": "p.",
     "nav2/a200.lasertest.yaml::ust10lx_to_rplidar_a1[avoid-0]": "Fp.",
-    "nav2/cropped_range.lasertest.yaml::cropped_range[candidate-misses-0]": "m.",
     "paper.lasertest.yaml::size[avoid-1]": "F.",
     "paper.lasertest.yaml::size[candidate-misses-2]": "Fm",
     "turning.lasertest.yaml::blind_spot_turning[avoid-0]": "Fmp.",

@@ -98,6 +98,10 @@ class DwbController:
         }
         self._goal: tuple[float, float] | None = None
 
+    def reset(self) -> None:
+        """nav2_core::Controller::reset, which the controller server calls whenever a
+        FollowPath action ends: DWBLocalPlanner keeps the interface's default, nothing."""
+
     def set_plan(self) -> None:
         """A new plan: the critics start afresh, as DWBLocalPlanner::setPlan resets them."""
         self.rotate_to_goal.reset()

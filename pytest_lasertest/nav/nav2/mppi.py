@@ -224,7 +224,7 @@ class Optimizer:
         failure starts the sequence afresh, as Optimizer::fallback resets it."""
         cycle, failures = Cycle(pose, speed, path, goal, costmap), 0
         while not self._optimize(cycle):
-            self._reset()
+            self.reset()
             failures += 1
             if failures > self.settings.retry_attempt_limit:
                 return None
@@ -245,9 +245,11 @@ class Optimizer:
             self._update(data)
         return True
 
-    def _reset(self) -> None:
+    def reset(self) -> None:
         """Optimizer::reset: the sequence and the command history zeroed, the noise drawn
-        afresh."""
+        afresh. The controller server resets its controllers whenever a FollowPath action ends
+        (publishZeroVelocity, controller_server.cpp:779-798 at jazzy f4108e5b); a cycle in
+        which every sample failed resets it too (fallback)."""
         self.vx[:], self.wz[:] = 0.0, 0.0
         self.history[:] = 0.0
         self._noise.reset()

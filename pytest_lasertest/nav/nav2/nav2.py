@@ -179,6 +179,7 @@ class Nav2:
         if self._behavior is not None:
             return self._recover(pose, time)
         if self._due("plan", time, s.replan_period) and not self._plan_with_recovery(pose, time):
+            self.controller.reset()  # the tree halts FollowPath: its action ends
             return self._navigation_failed(pose, time)
         if self._due("cycle", time, 1.0 / s.controller_frequency):
             command = self._cycle(pose, (odometry.linear, odometry.angular), time)
@@ -197,7 +198,9 @@ class Nav2:
         return self._replan(pose)
 
     def _follow_failed(self, pose: Pose, time: float) -> tuple[float, float]:
-        """FollowPath in its RecoveryNode: once more after clearing the local costmap."""
+        """FollowPath in its RecoveryNode: once more after clearing the local costmap. Its
+        action ended, the controller server resets the controller."""
+        self.controller.reset()
         if self._follow_retried:
             return self._navigation_failed(pose, time)
         self._follow_retried = True
@@ -324,6 +327,7 @@ class Nav2:
         """The next waypoint, navigated to by a fresh run of the tree: its retries, round robin
         and checkers start again, as each NavigateToPose goal's do."""
         self.goal_index += 1
+        self.controller.reset()  # FollowPath succeeded: its action ended
         self._retries = self._robin = 0
         self._afresh()
 

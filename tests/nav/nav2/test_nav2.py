@@ -12,7 +12,9 @@ import pytest
 from pytest_lasertest.model.geometry import Point2D, Pose2D
 from pytest_lasertest.model.obstacles import Cylinder
 from pytest_lasertest.nav.nav2.behaviors import BehaviorSettings, Spin
+from pytest_lasertest.nav.nav2.mppi import Optimizer
 from pytest_lasertest.nav.nav2.nav2 import Nav2
+from pytest_lasertest.nav.nav2.settings import Nav2Settings
 from pytest_lasertest.nav.protocol import LaserScan, Odometry
 from pytest_lasertest.pairsfile import load_pairs_file
 from pytest_lasertest.sim.scenario import Scenario, run_scenario
@@ -53,6 +55,26 @@ def test_a_robot_that_never_moves_goes_through_the_default_trees_recoveries_in_o
     ]
     times = [round(time) for time, _ in nav2.activity[:4]]
     assert times == [10, 20, 30, 40]
+
+
+def test_a_followpath_that_fails_resets_mppi_as_the_controller_server_does() -> None:
+    nav2 = Nav2(PAPER.robot, TURN, Nav2Settings())  # Jazzy's MPPI
+    assert isinstance(nav2.controller, Optimizer)
+    meta = SCANNER.to_laserscan_meta()
+    standing = Odometry(0.0, 0.0, 0.0, 0.0, 0.0)  # whatever it commands
+    sequences = []
+    for step in range(int(11.0 / 0.02)):
+        time = step * 0.02
+        scan = LaserScan(time, np.full(SCANNER.beam_count, np.inf), meta, SCANNER.pose)
+        nav2.observe(scan, standing, time)
+        sequences.append(nav2.controller.vx.copy())
+        if nav2.activity:
+            break
+    # The progress checker failed FollowPath at 10 s: its action ended, and the controller
+    # server reset MPPI, whose sequence had been driving the robot forward.
+    assert nav2.activity == [(pytest.approx(10.0, abs=0.05), "ClearLocalCostmap-Context")]
+    assert sequences[-2].max() > 0.1  # m/s
+    assert not sequences[-1].any()
 
 
 def test_a_pairs_file_names_nav2_as_a_registered_controller() -> None:
