@@ -30,6 +30,7 @@ import tempfile
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
+WIDTH = 52  # characters: the drive column, wide enough for every drive's name
 
 # Runs in each checkout's own process: only the API both checkouts share.
 DRIVES = r"""
@@ -146,10 +147,6 @@ def main() -> None:
         for name in checkouts:
             totals[name] = [sum(pair) for pair in zip(totals[name], medians[name], strict=True)]
     print(_row("all drives", totals["old"], totals["new"]))
-
-
-# Wide enough for every drive's name.
-WIDTH = 52
 
 
 def _medians(runs: list[dict[str, Timing]], drive: str) -> list[float]:
