@@ -6,6 +6,7 @@ import importlib
 import re
 import subprocess
 import sys
+from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
@@ -193,3 +194,44 @@ def test_the_side_by_side_benchmark_finds_a_checkout_drives_as_itself() -> None:
     drives = lines[3:-1]
     assert len(drives) == 12  # four stacks in three worlds
     assert all(line.endswith("x  same") for line in drives)
+
+
+MAIN_JOB_LINE = re.compile(
+    r"main job: \d+ s here \(peak \d+ MB\), \d+ s against (.+) \(ratio [\d.]+\); "
+    r"([\d.]+) simulated s in (\d+) drives, bare physics alone ([\d.]+) s"
+)
+
+
+def test_the_main_job_benchmark_times_both_checkouts_and_counts_the_drives() -> None:
+    selection = ("examples/paper.lasertest.yaml", "-k", "size and no-obstacle")
+    lines = printed("benchmarks/main_job.py", "--warm", "--against", str(REPO), "--", *selection)
+    # The control item alone: it passes in both, after driving each robot to the goal.
+    assert lines[0].startswith("this checkout: ")
+    assert lines[0].endswith("; . 1")
+    assert lines[1].startswith(f"{REPO}: ")
+    assert lines[1].endswith("; . 1")
+    line = MAIN_JOB_LINE.fullmatch(lines[-1])
+    assert line is not None
+    against, simulated, drives, floor = line.groups()
+    assert against == str(REPO)
+    assert int(drives) == 2
+    assert 10.0 < float(simulated) / 2 < 60.0  # s, each robot's 10 m route within its time limit
+    assert 0.0 <= float(floor) < float(simulated)
+
+
+def test_the_main_job_benchmark_starts_cold_as_a_fresh_clone_does(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
+    main_job = importlib.import_module("main_job")
+    cache = tmp_path / "pytest_lasertest" / "nav" / "__pycache__"
+    database = tmp_path / ".hypothesis" / "examples"
+    compiled = (cache / "kernels.f-1.py312.nbi", cache / "kernels.f-1.py312.1.nbc")
+    for path in (*compiled, database / "k"):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text("")
+    (cache / "kernels.cpython-312.pyc").write_text("")
+    main_job.cold_start(tmp_path)
+    assert [path.name for path in cache.iterdir()] == ["kernels.cpython-312.pyc"]
+    assert not database.exists()
+    assert database.parent.exists()
