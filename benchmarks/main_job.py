@@ -17,7 +17,8 @@ and search free. The last line reads
     main job: S s here (peak M MB), O s against CHECKOUT (ratio R); T simulated s in D drives,
     bare physics alone F s
 
-on one line (`against` and its ratio only with `--against`).
+on one line, R being the other checkout's time over this one's (above 1, this one is faster);
+`against` and its ratio only with `--against`.
 
     python benchmarks/main_job.py [--against CHECKOUT] [--workers N] [--examples N] [--seed 1]
                                   [--warm] [-- PYTEST_ARGUMENT ...]
